@@ -1,0 +1,38 @@
+"""The ``worldgen`` command: a thin click layer over the library.
+
+Every command lives in a module of this package, named for its job. Domain errors become one line on stderr and
+exit code 2 (click's own usage errors exit 2 as well); 1 is reserved for "checks ran and failed".
+"""
+
+from __future__ import annotations
+
+import sys
+
+import click
+
+from .. import __version__
+from ..errors import WorldgenError
+
+EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT = 0, 1, 2
+
+
+class _Group(click.Group):
+    def invoke(self, ctx: click.Context):
+        try:
+            return super().invoke(ctx)
+        except WorldgenError as err:
+            click.echo(f"worldgen: error: {err}", err=True)
+            sys.exit(EXIT_BAD_INPUT)
+
+
+@click.group(cls=_Group, context_settings={"help_option_names": ["-h", "--help"], "max_content_width": 100})
+@click.version_option(__version__, prog_name="worldgen")
+def main() -> None:
+    """Gazebo worlds for TurtleBot3 classes: build them from text, launch them, check them headless."""
+
+
+from . import build as _build, ros as _ros, validate as _validate  # noqa: E402  (register the commands)
+
+for _module in (_build, _validate, _ros):
+    for _command in _module.COMMANDS:
+        main.add_command(_command)

@@ -1,0 +1,3 @@
+"""worldgen build commands (placeholder until implemented)."""
+
+COMMANDS = []

@@ -1,0 +1,3 @@
+"""worldgen ros commands (placeholder until implemented)."""
+
+COMMANDS = []

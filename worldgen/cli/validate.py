@@ -1,0 +1,3 @@
+"""worldgen validate commands (placeholder until implemented)."""
+
+COMMANDS = []

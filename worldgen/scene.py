@@ -1,0 +1,62 @@
+"""The scene: what a world file holds once read, as collision shapes in the world frame.
+
+Data flows file → :mod:`worldgen.sdf.reader` → :class:`Scene` → checks / pybullet / preview. A scene holds no
+pybullet or trimesh objects, only numbers, so it can be tested and drawn without a simulator.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Literal
+
+from .findings import Finding
+
+ShapeKind = Literal["box", "cylinder", "sphere", "mesh", "plane"]
+Vec3 = tuple[float, float, float]
+Quat = tuple[float, float, float, float]  # x, y, z, w (pybullet's order)
+
+
+@dataclass
+class Shape:
+    """One collision shape, placed in the world frame.
+
+    ``position``/``orientation`` are the world pose of the shape's own frame (its centre for box, cylinder and
+    sphere, as in SDF). ``size`` is the box's full x, y, z; a cylinder has ``radius`` and ``length`` along its
+    local z; a sphere has ``radius``; a mesh has ``vertices`` (N × 3, already scaled, in the shape's frame) and
+    ``faces`` (M × 3 indices); a plane has ``normal`` (local). ``model``/``link``/``name`` say where it came from.
+    """
+
+    kind: ShapeKind
+    position: Vec3
+    orientation: Quat = (0.0, 0.0, 0.0, 1.0)
+    size: Vec3 | None = None
+    radius: float | None = None
+    length: float | None = None
+    normal: Vec3 | None = None
+    vertices: object | None = None  # numpy array (N, 3) for meshes
+    faces: object | None = None     # numpy array (M, 3) for meshes
+    model: str = ""
+    link: str = ""
+    name: str = ""
+    static: bool = True
+
+    @property
+    def label(self) -> str:
+        return "/".join(p for p in (self.model, self.link, self.name) if p)
+
+
+@dataclass
+class Scene:
+    """A world read from a file: its shapes and what the reader had to say about it."""
+
+    source: Path | None
+    sdf_version: str | None = None
+    world_name: str | None = None
+    shapes: list[Shape] = field(default_factory=list)
+    findings: list[Finding] = field(default_factory=list)
+    models: list[str] = field(default_factory=list)
+
+    def obstacles(self) -> list[Shape]:
+        """Every shape but ground planes."""
+        return [s for s in self.shapes if s.kind != "plane"]
