@@ -1,7 +1,8 @@
 """The ``worldgen`` command: a thin click layer over the library.
 
-Every command lives in a module of this package, named for its job. Domain errors become one line on stderr and
-exit code 2 (click's own usage errors exit 2 as well); 1 is reserved for "checks ran and failed".
+Every command lives in a module of this package, named for its job, exposing ``COMMANDS``. Domain errors become
+one line on stderr and exit code 2 (click's own usage errors exit 2 as well); 1 is reserved for "checks ran and
+failed".
 """
 
 from __future__ import annotations
@@ -31,8 +32,8 @@ def main() -> None:
     """Gazebo worlds for TurtleBot3 classes: build them from text, launch them, check them headless."""
 
 
-from . import build as _build, ros as _ros, validate as _validate  # noqa: E402  (register the commands)
+from . import build, drive, new, preview, ros, validate  # noqa: E402  (each module registers its commands)
 
-for _module in (_build, _validate, _ros):
+for _module in (new, build, preview, ros, validate, drive):
     for _command in _module.COMMANDS:
         main.add_command(_command)

@@ -1,0 +1,3 @@
+"""worldgen drive command (placeholder until implemented)."""
+
+COMMANDS = []

@@ -1,0 +1,3 @@
+"""worldgen new command (placeholder until implemented)."""
+
+COMMANDS = []

@@ -1,0 +1,3 @@
+"""worldgen preview command (placeholder until implemented)."""
+
+COMMANDS = []
