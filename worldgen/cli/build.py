@@ -1,3 +1,52 @@
-"""worldgen build commands (placeholder until implemented)."""
+"""``worldgen build``: a floorplan spec becomes a Gazebo world (and, on request, a Building-Editor model folder).
 
-COMMANDS = []
+A thin layer over :func:`worldgen.spec.load_spec`, :func:`worldgen.geometry.build_geometry` and
+:func:`worldgen.sdf.writer.planned_files`. The command gathers every output in one ``{path: text}`` mapping and
+writes it all-or-nothing, so further outputs (a package's worlds/ and launch/ folders, say) are one more
+``files.update(...)`` before the write. Only lxml and PyYAML are imported on this path, to keep it fast.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import click
+
+SDF_VERSION_CHOICES = ("1.6", "1.7", "1.8", "1.9")   # = worldgen.sdf.writer.SDF_VERSIONS, without importing it
+
+
+@click.command("build")
+@click.argument("spec", type=click.Path(exists=True, dir_okay=False, path_type=Path))
+@click.option("-o", "--output", "out_dir", type=click.Path(file_okay=False, path_type=Path), default=Path("."),
+              show_default=True, help="Folder for NAME.world (created if missing).")
+@click.option("--sdf-version", type=click.Choice(SDF_VERSION_CHOICES), default="1.6", show_default=True,
+              help="SDF version to write: 1.6 for Gazebo 9/11 (ROS Melodic/Noetic), newer on request.")
+@click.option("--model-dir", is_flag=True,
+              help="Also write the building as a model folder OUT/NAME/ (model.config + model.sdf), as the "
+                   "Building Editor saves it.")
+@click.option("--package", "package_dir", type=click.Path(exists=True, file_okay=False, path_type=Path),
+              metavar="DIR", help="A catkin package folder: write the world to DIR/worlds/NAME.world (instead of "
+                                  "OUT) and its launch file to DIR/launch/turtlebot3_in_NAME.launch.")
+@click.option("--force", is_flag=True, help="Overwrite existing files.")
+def build_command(spec: Path, out_dir: Path, sdf_version: str, model_dir: bool, package_dir: Path | None,
+                  force: bool) -> None:
+    """Build the Gazebo world of the floorplan SPEC (YAML/JSON, or an ASCII grid .txt) as OUT/NAME.world."""
+    from ..fsio import write_files
+    from ..geometry import build_geometry
+    from ..sdf.writer import planned_files
+    from ..spec import load_spec
+
+    plan = load_spec(spec)
+    building = build_geometry(plan)
+    files = planned_files(building, out_dir, sdf_version=sdf_version, model_dir=model_dir,
+                          description=f"{building.name}: built by worldgen from {spec.name}")
+    if package_dir is not None:   # the world moves into the package, beside its launch file
+        from ..launch import package_world_files, spec_spawn
+
+        world_text = files.pop(out_dir / f"{building.name}.world")
+        files.update(package_world_files(package_dir, building.name, world_text, spec_spawn(plan, world_text)))
+    for path in write_files(files, force=force):
+        click.echo(f"wrote {path}")
+
+
+COMMANDS = [build_command]

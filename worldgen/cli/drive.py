@@ -1,3 +1,190 @@
-"""worldgen drive command (placeholder until implemented)."""
+"""``worldgen drive WORLD``: the class's sensory-motor exercises (spin in place, stop at a wall with P/PI/PID
+gains) run headless in pybullet, with the figures a student compares and an optional plot and CSV."""
 
-COMMANDS = []
+from __future__ import annotations
+
+import json
+import math
+import sys
+from pathlib import Path
+
+import click
+
+from . import EXIT_FAILED, EXIT_OK
+
+SIM_TIMEOUT = 300.0   # s of wall time for all runs together
+
+
+@click.command("drive")
+@click.argument("world", type=click.Path(path_type=Path))
+@click.option("--behavior", "--behaviour", "behaviour", type=click.Choice(["spin", "stop-at-wall"]),
+              default="stop-at-wall", show_default=True, help="The exercise to run.")
+@click.option("--robot", default=None, metavar="burger|waffle|waffle_pi|FILE",
+              help="Robot model, or a .urdf/.urdf.xacro file. Default: the spec's, else burger.")
+@click.option("--spawn", default=None, metavar="X,Y[,YAW]",
+              help="Spawn pose in metres and radians. Default: the spec's robot entry, else 0,0,0.")
+@click.option("--target", type=float, default=0.5, show_default=True, help="Stop-at-wall: distance to stop at (m).")
+@click.option("--kp", type=float, multiple=True,
+              help="Proportional gain (repeat for several runs on one plot). Default 0.5.")
+@click.option("--ki", type=float, multiple=True, help="Integral gain (once for all runs, or once per run). Default 0.")
+@click.option("--kd", type=float, multiple=True, help="Derivative gain (once for all runs, or once per run). Default 0.")
+@click.option("--duration", type=click.FloatRange(min=0.1, max=600), default=None, metavar="S",
+              help="Simulated seconds per run. Default: 20 for stop-at-wall, one full turn for spin.")
+@click.option("--max-speed", type=click.FloatRange(min=0.01, max=1.0), default=0.22, show_default=True,
+              help="Stop-at-wall: speed limit of the command (m/s; burger 0.22, waffle 0.26).")
+@click.option("--omega", type=click.FloatRange(min=-3.0, max=3.0), default=1.0, show_default=True,
+              help="Spin: turn rate (rad/s; burger at most 2.84, waffle 1.82).")
+@click.option("--rate", type=click.Choice(["5", "30"]), default="5", show_default=True,
+              help="Stop-at-wall: control loop rate in Hz (the LiDAR's 5 Hz or the drive's 30 Hz).")
+@click.option("--tolerance", type=click.FloatRange(min=0.0), default=0.05, show_default=True,
+              help="Stop-at-wall: the run passes when it ends within this of the target (m).")
+@click.option("--lidar-no-hit", type=click.Choice(["inf", "zero"]), default="inf", show_default=True,
+              help="What a beam that hits nothing reads: inf as in Gazebo, 0 as the real LDS-01 driver.")
+@click.option("--model-path", "model_paths", multiple=True, type=click.Path(path_type=Path), metavar="DIR",
+              help="Folder of Gazebo models for model:// includes (repeatable).")
+@click.option("--plot", type=click.Path(path_type=Path, dir_okay=False), default=None, metavar="FILE.png",
+              help="Write a figure: distance to the wall against time, one curve per gain set.")
+@click.option("--csv", "csv_path", type=click.Path(path_type=Path, dir_okay=False), default=None, metavar="FILE",
+              help="Write the time series as CSV.")
+@click.option("--force", is_flag=True, help="Overwrite existing --plot/--csv files.")
+@click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True)
+def drive(world, behaviour, robot, spawn, target, kp, ki, kd, duration, max_speed, omega, rate, tolerance,
+          lidar_no_hit, model_paths, plot, csv_path, force, fmt):
+    """Run a sensory-motor exercise in WORLD (a .world/.sdf file or a floorplan spec) and report it.
+
+    stop-at-wall drives toward the wall ahead with v = kp·e + ki·∫e + kd·de/dt (e = front LiDAR distance −
+    target, clamped to ±max-speed) and reports final distance, overshoot, settling time and contacts; spin
+    turns in place and reports the drift. Exit status: 0 every run stopped where it should without touching
+    anything, 1 a run touched something or missed the target band, 2 bad input.
+    """
+    from ..errors import InputError
+    from ..fsio import check_free, write_files
+    from ..sim.process import run_isolated
+    from ..validate import input_kind, parse_spawn
+
+    if not world.exists():
+        raise InputError("no such file", path=world, hint="give a .world/.sdf file or a floorplan spec (.yaml)")
+    kind = input_kind(world)
+    if kind not in ("world", "model-folder", "spec"):
+        raise InputError(f"is a {kind}, not a world", path=world,
+                         hint="give a .world/.sdf file or a floorplan spec (.yaml)")
+    for folder in model_paths:
+        if not folder.is_dir():
+            raise InputError("--model-path is not a folder", path=folder, hint="give a folder of Gazebo models")
+    outputs = [p for p in (plot, csv_path) if p is not None]
+    check_free(outputs, force)
+    request = {
+        "world": str(world), "kind": "spec" if kind == "spec" else "world", "behaviour": behaviour,
+        "robot": _robot_arg(robot), "spawn": list(parse_spawn(spawn)) if spawn is not None else None,
+        "gains": gain_sets(kp, ki, kd), "target": target, "duration": duration, "max_speed": max_speed,
+        "omega": omega, "rate": float(rate), "no_hit": lidar_no_hit, "tolerance": tolerance,
+        "model_paths": [str(p) for p in model_paths]}
+    result = run_isolated("worldgen.sim.exercise:drive_exercise", request, timeout=SIM_TIMEOUT)
+    files = {}
+    if plot is not None:
+        from ..sim.plot import plot_png
+        files[plot] = plot_png(result)
+    if csv_path is not None:
+        from ..sim.plot import series_csv
+        files[csv_path] = series_csv(result)
+    if files:
+        write_files(files, force=force)
+    click.echo(json.dumps(_finite(_summary(result)), indent=2) if fmt == "json" else text_report(result))
+    sys.exit(EXIT_OK if all(run["ok"] for run in result["runs"]) else EXIT_FAILED)
+
+
+def _robot_arg(robot: str | None) -> str | None:
+    """Check the robot option here (a bad one is bad input, exit 2) and pass files as absolute paths."""
+    if robot is None:
+        return None
+    from ..robots import robot_file
+    path = robot_file(robot)
+    return robot if robot in ("burger", "waffle", "waffle_pi") else str(path)
+
+
+def gain_sets(kp: tuple, ki: tuple, kd: tuple) -> list[dict]:
+    """Zip repeated --kp/--ki/--kd into gain sets; a gain given once (or not at all) applies to every run."""
+    from ..errors import InputError
+
+    runs = max(len(kp), len(ki), len(kd), 1)
+    columns = {}
+    for name, values, default in (("kp", kp, 0.5), ("ki", ki, 0.0), ("kd", kd, 0.0)):
+        if len(values) not in (0, 1, runs):
+            raise InputError(f"--{name} is given {len(values)} times for {runs} runs",
+                             hint=f"give --{name} once (used for every run) or once per run")
+        columns[name] = list(values) * runs if len(values) == 1 else list(values) or [default] * runs
+    for name, values in columns.items():
+        if not all(math.isfinite(v) for v in values):
+            raise InputError(f"--{name} must be a finite number")
+    return [{name: columns[name][i] for name in ("kp", "ki", "kd")} for i in range(runs)]
+
+
+def _summary(result: dict) -> dict:
+    """The JSON report: everything but the time series (those go to --csv)."""
+    runs = [{k: v for k, v in run.items() if k != "series"} for run in result["runs"]]
+    return {**result, "runs": runs, "ok": all(run["ok"] for run in runs)}
+
+
+def _finite(value):
+    """Standard JSON: inf and nan become null."""
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    if isinstance(value, dict):
+        return {k: _finite(v) for k, v in value.items()}
+    if isinstance(value, list):
+        return [_finite(v) for v in value]
+    return value
+
+
+def _m(value) -> str:
+    return "-" if value is None else f"{value:.3f}"
+
+
+def text_report(result: dict) -> str:
+    from ..sim.plot import gains_label
+
+    x, y, yaw = result["spawn"]
+    lines = [f"{result['behaviour']} in {result['world']}: {result['robot']} at x={x:.2f} y={y:.2f} "
+             f"yaw={yaw:.2f} (from {result['spawn_source']})"]
+    if result["behaviour"] == "spin":
+        for run in result["runs"]:
+            lines.append(f"  turned {math.degrees(run['turned']):.0f}° at {run['omega']:g} rad/s: drift "
+                         f"{run['drift'] * 1000:.1f} mm at the end, {run['max_drift'] * 1000:.1f} mm at most "
+                         f"(limit {run['drift_limit'] * 1000:.0f} mm)" + _contacts_text(run) +
+                         ("  ok" if run["ok"] else "  FAILED"))
+    else:
+        first = result["runs"][0]
+        lines.append(f"  target {first['target']:g} m ±{first['tolerance']:g} m; settling band ±{first['band']:g} m "
+                     "around the final distance; distances from base_scan to the wall ahead")
+        lines.append(f"  {'gains':<22} {'final':>7} {'error':>7} {'closest':>7} {'overshoot':>9} "
+                     f"{'settling':>8}  result")
+        for run in result["runs"]:
+            settling = "-" if run["settling_time"] is None else f"{run['settling_time']:.1f} s"
+            verdict = "ok" if run["ok"] else "FAILED: " + "; ".join(_failures(run))
+            lines.append(f"  {gains_label(run):<22} {_m(run['final_distance']):>7} {_m(run['steady_state_error']):>7} "
+                         f"{_m(run['min_distance']):>7} {_m(run['overshoot']):>9} {settling:>8}  {verdict}")
+    lines.append(f"  ({result['sim_seconds']:.1f} s simulated in {result['wall_seconds']:.1f} s)")
+    return "\n".join(lines)
+
+
+def _failures(run: dict) -> list[str]:
+    reasons = []
+    if run["contacts"]:
+        reasons.append(_contacts_text(run).strip())
+    if not run["within_tolerance"]:
+        reasons.append("no wall ahead at the end" if run["final_distance"] is None else
+                       f"ended {run['final_distance'] - run['target']:+.3f} m from the target")
+    if not run["stopped"]:
+        reasons.append("still moving at the end")
+    return reasons
+
+
+def _contacts_text(run: dict) -> str:
+    if not run["contacts"]:
+        return ""
+    first = run["contacts"][0]
+    more = f" (+{len(run['contacts']) - 1} more)" if len(run["contacts"]) > 1 else ""
+    return f"  touched {first['shape']} with {first['link']} at t={first['time']:.1f} s{more}"
+
+
+COMMANDS = [drive]

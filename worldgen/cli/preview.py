@@ -1,3 +1,54 @@
-"""worldgen preview command (placeholder until implemented)."""
+"""``worldgen preview SPEC|WORLD``: a top-down PNG of walls, openings, obstacles, the spawn pose and LiDAR rays."""
 
-COMMANDS = []
+from __future__ import annotations
+
+import dataclasses
+from pathlib import Path
+
+import click
+
+from ..errors import InputError
+from ..fsio import check_free, write_file
+from ..spec import ROBOT_MODELS
+
+
+@click.command("preview")
+@click.argument("source", type=click.Path(path_type=Path), metavar="SPEC|WORLD")
+@click.option("-o", "--output", type=click.Path(dir_okay=False, path_type=Path), default=None, metavar="FILE.png",
+              help="The picture to write (default: the input's name with .png, in the current folder).")
+@click.option("--spawn", default=None, metavar="X,Y[,YAW]",
+              help="The robot's pose, metres and radians (default: the spec's robot; none for a world).")
+@click.option("--robot", type=click.Choice(ROBOT_MODELS), default=None,
+              help="The TurtleBot3 whose footprint is drawn (default: the spec's, else burger).")
+@click.option("--lidar", is_flag=True, help="Simulate one LiDAR scan from the spawn pose and draw its rays.")
+@click.option("--model-path", "model_paths", multiple=True, type=click.Path(path_type=Path), metavar="DIR",
+              help="A folder of Gazebo models for a world's model:// includes (repeatable).")
+@click.option("--force", is_flag=True, help="Overwrite the picture if it exists.")
+def preview(source: Path, output: Path | None, spawn: str | None, robot: str | None, lidar: bool,
+            model_paths: tuple[Path, ...], force: bool) -> None:
+    """Draw SPEC (.yaml, .json, .txt grid) or WORLD (.world, .sdf) from above, to scale: what a TurtleBot3
+    meets at its own height (walls, obstacles; doors and windows of a spec), and where it spawns."""
+    from ..preview import parse_spawn, picture, render
+
+    output = output or Path(f"{source.stem}.png")
+    check_free([output], force)   # before the work; write_file checks again
+    pic = picture(source, model_paths)
+    if spawn is not None:
+        pic = dataclasses.replace(pic, spawn=parse_spawn(spawn, robot or "burger"))
+    elif robot is not None and pic.spawn is not None:
+        pic = dataclasses.replace(pic, spawn=dataclasses.replace(pic.spawn, model=robot))
+    rays = None
+    if lidar:
+        if pic.spawn is None:
+            raise InputError("--lidar needs a spawn pose", hint="give --spawn X,Y[,YAW] or a robot: in the spec")
+        from ..preview import lidar_rays
+
+        rays = lidar_rays(pic, pic.spawn, model_paths)
+    for finding in pic.scene.findings:
+        if finding.severity != "info":
+            click.echo(f"worldgen: {finding.severity}: {finding.message}", err=True)
+    path = write_file(output, render(pic, rays), force=force)
+    click.echo(f"wrote {path}")
+
+
+COMMANDS = [preview]

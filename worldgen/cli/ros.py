@@ -1,3 +1,133 @@
-"""worldgen ros commands (placeholder until implemented)."""
+"""``worldgen launch``, ``worldgen scaffold`` and ``worldgen course``: catkin launch files and packages.
 
-COMMANDS = []
+A thin layer over :mod:`worldgen.launch`, :mod:`worldgen.scaffold` and :mod:`worldgen.course`.
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import click
+
+from ..launch import MODEL_CHOICES
+
+
+@click.command("launch")
+@click.argument("world", type=click.Path(exists=True, dir_okay=False, path_type=Path))
+@click.option("--package", "-p", "package", metavar="PKG",
+              help="The package whose worlds/ folder holds WORLD (default: the package around WORLD).")
+@click.option("--name", metavar="FILE", help="Launch file name (default: turtlebot3_in_<world>.launch).")
+@click.option("--model", type=click.Choice(MODEL_CHOICES), default="env", show_default=True,
+              help="The default robot model; env means $(env TURTLEBOT3_MODEL), as in the class.")
+@click.option("--spawn", metavar="X,Y[,Z[,YAW]]",
+              help="Spawn pose in metres and radians (default: the spec's robot pose, else the deepest free "
+                   "point of the room).")
+@click.option("--node", "nodes", multiple=True, metavar="PKG/TYPE[:NAME]",
+              help="Also start this node (repeatable), e.g. lab_a_stop_at_wall/stop_at_wall.py.")
+@click.option("-o", "--output", type=click.Path(file_okay=False, path_type=Path),
+              help="Folder to write to (default: the package's launch/ folder when WORLD is in PKG/worlds/, "
+                   "else the current folder).")
+@click.option("--force", is_flag=True, help="Overwrite an existing launch file.")
+def launch_command(world: Path, package: str | None, name: str | None, model: str, spawn: str | None,
+                   nodes: tuple[str, ...], output: Path | None, force: bool) -> None:
+    """Write the launch file that starts Gazebo with WORLD and spawns a TurtleBot3 in it."""
+    from ..errors import InputError
+    from ..fsio import write_file
+    from ..launch import (default_launch_name, format_number, launch_xml, package_name_of, parse_node,
+                          parse_spawn, spawn_for_world)
+
+    node_refs = [parse_node(n) for n in nodes]
+    world_pkg = world.resolve().parent.parent if world.resolve().parent.name == "worlds" else None
+    if world_pkg is not None and not (world_pkg / "package.xml").is_file():
+        world_pkg = None
+    if package is None:
+        if world_pkg is None:
+            raise InputError("which package holds the world?", path=world,
+                             hint="pass --package PKG (the launch file finds the world as $(find PKG)/worlds/...)")
+        package = package_name_of(world_pkg)
+    launch_name = name or default_launch_name(world.name)
+    if not launch_name.endswith((".launch", ".launch.xml")):
+        launch_name += ".launch"
+    if Path(launch_name).name != launch_name:
+        raise InputError(f"--name {name!r} is a path, not a file name", hint="use -o DIR for the folder")
+    pose, source = spawn_for_world(world, model, parse_spawn(spawn) if spawn else None)
+    text = launch_xml(world.name, package, model, pose, node_refs, launch_name=launch_name)
+    folder = output if output is not None else (world_pkg / "launch" if world_pkg is not None else Path("."))
+    target = write_file(folder / launch_name, text, force=force)
+    where = {"given": "--spawn", "spec": "the spec's robot pose", "world": "the deepest free point of the room",
+             "open": "the world has no closed room: the deepest free point inside its walls"}
+    click.echo(f"wrote {target} (spawn {format_number(pose[0])}, {format_number(pose[1])}, yaw "
+               f"{format_number(pose[3])}: {where[source]})")
+
+
+class _CatkinStyleCommand(click.Command):
+    """Options -s/--sys-deps and -b/--boost-comps take every following word up to the next option, as
+    catkin_create_pkg's do (``-s eigen opencv -b thread``)."""
+
+    GREEDY = ("-s", "--sys-deps", "-b", "--boost-comps")
+
+    def parse_args(self, ctx: click.Context, args: list[str]) -> list[str]:
+        spread: list[str] = []
+        current = None
+        for i, word in enumerate(args):
+            if word == "--":
+                spread += args[i:]
+                break
+            if current is not None and not word.startswith("-"):
+                spread += [current, word]
+                continue
+            current = word if word in self.GREEDY else None
+            if current is None:
+                spread.append(word)
+        return super().parse_args(ctx, spread)
+
+
+@click.command("scaffold", cls=_CatkinStyleCommand)
+@click.argument("name")
+@click.argument("dependencies", nargs=-1)
+@click.option("--meta", is_flag=True, help="Create a metapackage.")
+@click.option("-s", "--sys-deps", "sys_deps", multiple=True, metavar="DEP...", help="System dependencies.")
+@click.option("-b", "--boost-comps", "boost_comps", multiple=True, metavar="COMP...", help="Boost components.")
+@click.option("-V", "--pkg_version", "version", metavar="VERSION", help="Initial package version (0.0.0).")
+@click.option("-D", "--description", help='Description (default "The NAME package").')
+@click.option("-l", "--license", "licenses", multiple=True, help="A license (repeatable; default TODO).")
+@click.option("-a", "--author", "authors", multiple=True, metavar="'NAME [<EMAIL>]'",
+              help="An author (repeatable).")
+@click.option("-m", "--maintainer", "maintainers", multiple=True, metavar="'NAME [<EMAIL>]'",
+              help="A maintainer (repeatable; default: you, with NAME@todo.todo).")
+@click.option("--rosdistro", default=lambda: os.environ.get("ROS_DISTRO"), metavar="DISTRO",
+              help="The ROS distro (default: $ROS_DISTRO); ROS 1 only.")
+@click.option("-p", "--path", "parent", type=click.Path(file_okay=False, path_type=Path), default=Path("."),
+              help="Folder to create the package in (default: the current folder).")
+@click.option("--world", "world_spec", type=click.Path(exists=True, dir_okay=False, path_type=Path),
+              metavar="SPEC", help="Build this floorplan spec into worlds/ and its launch file into launch/.")
+@click.option("--force", is_flag=True, help="Replace an existing package folder.")
+def scaffold_command(name: str, dependencies: tuple[str, ...], meta: bool, sys_deps: tuple[str, ...],
+                     boost_comps: tuple[str, ...], version: str | None, description: str | None,
+                     licenses: tuple[str, ...], authors: tuple[str, ...], maintainers: tuple[str, ...],
+                     rosdistro: str | None, parent: Path, world_spec: Path | None, force: bool) -> None:
+    """Create the catkin package NAME depending on DEPENDENCIES, as catkin_create_pkg does, with launch/,
+    worlds/ and scripts/ folders that install, and optionally a world and its launch file."""
+    from ..scaffold import create_package, package_request
+
+    req = package_request(name, dependencies, sys_deps=sys_deps, boost_comps=boost_comps, version=version,
+                          description=description, licenses=licenses, authors=authors, maintainers=maintainers,
+                          meta=meta, rosdistro=rosdistro)
+    target = create_package(parent, req, world_spec=world_spec, force=force)
+    click.echo(f"created {target}")
+
+
+@click.command("course")
+@click.option("--workspace", "-w", type=click.Path(file_okay=False, path_type=Path), default=Path("."),
+              show_default=True, help="The catkin workspace; packages go to WORKSPACE/src/intro_robo.")
+@click.option("--force", is_flag=True, help="Replace an existing src/intro_robo folder.")
+def course_command(workspace: Path, force: bool) -> None:
+    """Write the class packages (labs, the enclosed-room world, its launch file) into a catkin workspace."""
+    from ..course import write_course
+
+    target = write_course(workspace, force=force)
+    click.echo(f"wrote {target}; build it with: cd {workspace} && catkin_make")
+
+
+COMMANDS = [launch_command, scaffold_command, course_command]

@@ -1,0 +1,180 @@
+"""The checks as functions: robot outline, enclosed, spawn-clear, and how simulated numbers are judged."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from test_enclosure import square_room, wall
+from worldgen.checks import (check_enclosed, check_parse, check_spawn_clear, floor_under, robot_body,
+                             sim_findings)
+from worldgen.findings import Finding
+from worldgen.scene import Scene, Shape
+
+BURGER = robot_body("burger")
+WAFFLE = robot_body("waffle")
+
+
+def errors(outcome, check=None):
+    return [f for f in outcome.findings if f.severity == "error" and (check is None or f.check == check)]
+
+
+def test_robot_outlines_come_from_our_urdf():
+    assert BURGER.width == pytest.approx(0.178, abs=1e-3)
+    assert WAFFLE.width == pytest.approx(0.306, abs=1e-3)
+    assert BURGER.lidar_height == pytest.approx(0.182)
+    assert WAFFLE.lidar_height == pytest.approx(0.132)
+    # burger: base box x -0.102 … 0.038 → the farthest corner (-0.102, ±0.07) sweeps ≈ 0.124 m when turning
+    assert BURGER.turn_radius == pytest.approx(math.hypot(0.102, 0.07), abs=2e-3)
+    assert BURGER.height == pytest.approx(0.191, abs=2e-3)
+
+
+def test_enclosed_room_passes_with_its_area():
+    out = check_enclosed(square_room(), (0.0, 0.0, 0.0), BURGER)
+    assert out.findings == []
+    assert out.metrics["enclosed"] is True
+    assert out.metrics["enclosed_area_m2"] == pytest.approx(4.85 ** 2, rel=3e-3)
+
+
+def test_gap_finding_says_where_how_wide_and_whether_the_robot_fits():
+    out = check_enclosed(square_room(door=(0, 3.0, 0.5)), (0.0, 0.0, 0.0), BURGER)
+    [finding] = errors(out, "enclosed")
+    assert "0.50 m gap at (0.75, -2.5" in finding.message
+    assert "can drive out" in finding.message
+    assert out.metrics["enclosed"] is False and out.metrics["robot_fits_gap"] is True
+    [gap] = out.metrics["gaps"]
+    assert math.dist(gap["centre"], (0.75, -2.5)) < 0.3 and gap["width"] == pytest.approx(0.5, abs=0.01)
+    narrow = check_enclosed(square_room(door=(0, 3.0, 0.25)), (0.0, 0.0, 0.0), WAFFLE)
+    assert "too narrow for the waffle (0.306 m wide)" in errors(narrow)[0].message
+    assert narrow.metrics["robot_fits_gap"] is False
+
+
+def test_no_walls_and_outside_the_room_are_told_apart():
+    empty = check_enclosed(Scene(None, shapes=[]), (0.0, 0.0, 0.0), BURGER)
+    assert "no walls around the spawn" in errors(empty)[0].message
+    room = square_room(centre=(-5.0, -1.0))
+    outside = check_enclosed(room, (0.0, 0.0, 0.0), BURGER)
+    message = errors(outside)[0].message
+    assert "outside the walls" in message
+    x0, y0, x1, y1 = outside.metrics["nearest_room"]
+    assert (x0, x1) == pytest.approx((-7.425, -2.575), abs=0.002) and (y0, y1) == pytest.approx((-3.425, 1.425),
+                                                                                               abs=0.002)
+
+
+def test_spawn_inside_a_wall_fails_both_geometric_checks():
+    room = square_room()
+    inside = check_enclosed(room, (2.5, 1.0, 0.0), BURGER)
+    assert "is inside room/Wall_1" in errors(inside)[0].message
+    assert inside.metrics["spawn_inside"] == "room/Wall_1"
+    clear = check_spawn_clear(room, (2.5, 1.0, 0.0), BURGER)
+    assert "spawns inside room/Wall_1" in errors(clear)[0].message
+    assert clear.metrics["min_clearance_m"] == 0.0
+
+
+def test_clearance_is_measured_from_the_robot_outline():
+    room = square_room()   # inner face of the right wall at x = 2.425
+    out = check_spawn_clear(room, (2.0, 0.0, 0.0), BURGER)   # the burger's front edge is at x + 0.038
+    assert out.findings == []
+    assert out.metrics["min_clearance_m"] == pytest.approx(2.425 - 2.038, abs=1e-3)
+    assert out.metrics["nearest_obstacle"] == "room/Wall_1"
+    facing_away = check_spawn_clear(room, (2.0, 0.0, math.pi), BURGER)   # now its back (0.102) faces the wall
+    assert facing_away.metrics["min_clearance_m"] == pytest.approx(2.425 - 2.102, abs=1e-3)
+
+
+def test_too_close_to_turn_is_a_warning():
+    # front edge 2 cm from the wall, but the rear corners sweep 0.124 m round the centre
+    out = check_spawn_clear(square_room(), (2.425 - 0.058, 0.0, 0.0), BURGER)
+    [finding] = out.findings
+    assert finding.severity == "warning" and "too close for it to turn in place" in finding.message
+    assert out.metrics["turn_clearance_m"] < 0
+
+
+def test_obstacles_under_the_climbing_threshold_or_above_the_robot_do_not_count():
+    sill = Shape("box", (0.0, 0.0, 0.004), size=(1.0, 1.0, 0.008), model="mat")
+    shelf = Shape("box", (0.0, 0.0, 1.0), size=(1.0, 1.0, 0.1), model="shelf")
+    low_box = Shape("box", (0.3, 0.0, 0.05), size=(0.2, 0.2, 0.1), model="crate")
+    assert check_spawn_clear(square_room(extra=[sill, shelf]), (0.0, 0.0, 0.0), BURGER).findings == []
+    hit = check_spawn_clear(square_room(extra=[low_box]), (0.2, 0.0, 0.0), BURGER)
+    assert "spawns inside crate" in errors(hit)[0].message
+    # the LiDAR plane (0.182 m) passes over the crate, so the room stays closed and the crate is no wall
+    assert check_enclosed(square_room(extra=[low_box]), (0.2, 0.0, 0.0), BURGER).metrics["enclosed"] is True
+
+
+def test_floor_slab_lifts_the_robot_and_the_slice():
+    # Gazebo's asphalt_plane: a 20 x 20 x 0.1 box centred on z = 0, so its top is at 0.05
+    slab = Shape("box", (0.0, 0.0, 0.0), size=(20.0, 20.0, 0.1), model="asphalt_plane")
+    scene = square_room(extra=[slab])
+    ground, metrics = floor_under(scene, (0.0, 0.0, 0.0))
+    assert ground == pytest.approx(0.05) and metrics["floor"] == "asphalt_plane"
+    assert check_spawn_clear(scene, (0.0, 0.0, 0.0), BURGER, ground).findings == []
+    enclosed = check_enclosed(scene, (0.0, 0.0, 0.0), BURGER, ground)
+    assert enclosed.metrics["enclosed"] is True
+    assert enclosed.metrics["slice_height_m"] == pytest.approx(0.232)
+    platform = Shape("box", (0.0, 0.0, 0.09), size=(2.0, 2.0, 0.18), model="platform")   # too high to be floor
+    assert floor_under(Scene(None, shapes=[platform]), (0.0, 0.0, 0.0))[0] == 0.0
+
+
+def test_parse_carries_the_reader_findings():
+    note = Finding("include", "warning", "cannot find included model model://x")
+    scene = Scene(None, sdf_version="1.6", shapes=[wall((0, 0), (1, 0), "Wall_0")], findings=[note])
+    out = check_parse(scene)
+    assert out.findings == [note]
+    assert out.metrics["sdf_version"] == "1.6" and out.metrics["shape_kinds"] == {"box": 1}
+
+
+# ------------------------------------------------------------------------------------------ simulated numbers
+
+def numbers(**parts):
+    base = {
+        "ran": ["settle", "lidar", "spin", "stop-at-wall"], "failed": {},
+        "settle": {"time": 1.0, "z": 0.0, "moved": 0.0, "tilt_deg": 0.3, "contact_points": []},
+        "lidar": {"beams": 360, "no_hit": 0, "range_max": 3.5, "no_hit_reading": None, "no_hit_bearings_deg": [],
+                  "nearest": 1.2, "nearest_bearing_deg": 90.0, "farthest": 3.1},
+        "spin": {"drift": 0.01, "turned": 6.28, "touched": [], "contact_points": []},
+        "stop": {"distance": 0.51, "touched": [], "time": 12.0, "heading_deg": 0.0},
+    }
+    for key, value in parts.items():
+        base[key] = {**base[key], **value} if isinstance(value, dict) else value
+    return base
+
+
+def test_good_numbers_give_no_findings_and_the_metrics():
+    out = sim_findings(numbers(), BURGER, "inf")
+    assert out.findings == []
+    assert out.metrics["lidar_no_hit_beams"] == 0 and out.metrics["spin_drift_m"] == 0.01
+    assert out.metrics["stop_distance_m"] == 0.51 and out.metrics["lidar_nearest_bearing_deg"] == 90.0
+
+
+def test_no_hit_beams_warn_with_the_reading_of_the_chosen_convention():
+    some = {"no_hit": 22, "no_hit_bearings_deg": [32.0], "no_hit_reading": math.inf}
+    [gazebo] = sim_findings(numbers(lidar=some), BURGER, "inf").findings
+    assert gazebo.severity == "warning" and "22 of 360 beams" in gazebo.message and "read inf" in gazebo.message
+    [robot] = sim_findings(numbers(lidar={**some, "no_hit_reading": 0.0}), BURGER, "zero").findings
+    assert "read 0 (as on the real robot)" in robot.message
+    [blind] = sim_findings(numbers(lidar={"no_hit": 360}), BURGER, "inf").findings
+    assert "all 360 beams hit nothing" in blind.message
+
+
+def test_spin_and_stop_failures_are_errors_naming_what_was_touched():
+    touched = sim_findings(numbers(spin={"touched": ["room/Wall_1"], "contact_points": [
+        {"shape": "room/Wall_1", "link": "base_link", "time": 0.4}]}), BURGER, "inf")
+    [f] = errors(touched, "spin")
+    assert "touched room/Wall_1" in f.message and "base_link touched room/Wall_1" in f.where
+    drift = sim_findings(numbers(spin={"drift": 0.08}), BURGER, "inf")
+    assert "drifted 8.0 cm" in errors(drift, "spin")[0].message
+    bump = sim_findings(numbers(stop={"touched": ["crate"]}), BURGER, "inf")
+    assert "touched crate" in errors(bump, "stop-at-wall")[0].message
+    short = sim_findings(numbers(stop={"distance": 0.7}), BURGER, "inf")
+    assert short.findings[0].severity == "warning" and "0.70 m" in short.findings[0].message
+    nothing = sim_findings(numbers(stop={"no_wall": True, "distance": None, "range": 3.5}), BURGER, "inf")
+    assert nothing.findings[0].severity == "info" and "no wall within 3.5 m" in nothing.findings[0].message
+
+
+def test_settle_failures():
+    tipped = sim_findings(numbers(settle={"tilt_deg": 40.0}), BURGER, "inf")
+    assert "tipped 40°" in errors(tipped, "settle")[0].message
+    fell = sim_findings(numbers(settle={"z": -0.5}), BURGER, "inf")
+    assert "fell through" in errors(fell, "settle")[0].message
+    on_slab = sim_findings(numbers(settle={"z": 0.05}), BURGER, "inf", ground=0.05)
+    assert errors(on_slab) == []

@@ -1,0 +1,186 @@
+"""The pybullet session behaves like the Gazebo TurtleBot3: scene loading and contact labels, the LDS-01 scan,
+the diff drive's ramp, spin in place, and the stop-at-wall loop."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+
+from worldgen.robots.profile import DriveParams
+from worldgen.scene import Scene, Shape
+from worldgen.sim.behaviours import settle, spin, stop_at_wall
+from worldgen.sim.drive import DiffDrive
+from worldgen.sim.lidar import front_distance
+from worldgen.sim.session import Session
+
+HALF = 2.5          # room walls on x, y = ±2.5 (centre-lines), 0.15 thick: inner faces at ±2.425
+INNER = HALF - 0.075
+BURGER_SCAN_X = -0.032   # base_scan in base_footprint
+
+
+def room(*extra: Shape, half: float = HALF) -> Scene:
+    walls = [((half, 0), (0.15, 2 * half)), ((-half, 0), (0.15, 2 * half)),
+             ((0, half), (2 * half, 0.15)), ((0, -half), (2 * half, 0.15))]
+    shapes = [Shape("box", (x, y, 1.25), size=(sx, sy, 2.5), model="room", link=f"Wall_{i}", name="collision")
+              for i, ((x, y), (sx, sy)) in enumerate(walls)]
+    return Scene(source=None, shapes=shapes + list(extra))
+
+
+def test_many_primitives_are_all_there():
+    """pybullet keeps 16 children per compound shape; 40 boxes must all stop rays and carry their labels."""
+    boxes = [Shape("box", (0.5 * i - 10, 3.0, 0.25), size=(0.2, 0.2, 0.5), model="row", name=f"b{i}")
+             for i in range(40)]
+    with Session(Scene(source=None, shapes=boxes)) as session:
+        import pybullet as pb
+        assert len(session.bodies.obstacle_bodies) == 3 and len(session.bodies.planes) == 1
+        starts = [[0.5 * i - 10, 3.0, 2.0] for i in range(40)]
+        ends = [[0.5 * i - 10, 3.0, -1.0] for i in range(40)]
+        hits = pb.rayTestBatch(starts, ends, physicsClientId=session.client)
+        assert all(h[0] in session.bodies.obstacle_bodies and h[3][2] == pytest.approx(0.5) for h in hits)
+        assert [session.bodies.label(h[0], h[3]) for h in hits] == [f"row/b{i}" for i in range(40)]
+
+
+def test_ground_plane_added_only_when_missing():
+    plane = Shape("plane", (0.0, 0.0, 0.0), normal=(0.0, 0.0, 1.0), model="ground_plane", link="link")
+    with Session(Scene(source=None, shapes=[plane])) as session:
+        assert [s[0].label for s in session.bodies.shapes.values()] == ["ground_plane/link"]
+    with Session(None) as session:
+        assert [s[0].name for s in session.bodies.shapes.values()] == ["added"]
+        assert settle(session, 0.3).z == pytest.approx(0.0, abs=0.003)
+
+
+def test_scan_matches_room_geometry_and_gazebo_angles():
+    with Session(room(), spawn=(0.0, 0.0, math.pi / 2), noise=False) as session:
+        scan = session.scan()
+        assert len(scan.ranges) == 360
+        assert scan.angle_increment == pytest.approx(6.28319 / 359)
+        assert (scan.range_min, scan.range_max) == (0.12, 3.5)
+        # robot faces +y, so beam 0 (base_scan +x) sees the north wall, ~beam 90 the west one, ~180 south
+        sx, sy = scan.origin[:2]
+        assert sy == pytest.approx(BURGER_SCAN_X, abs=0.002)
+        expected = {0: INNER - sy, 90: INNER + sx, 180: INNER + sy, 270: INNER - sx}
+        for i, distance in expected.items():
+            j = round(i * (2 * math.pi / 360) / scan.angle_increment)
+            assert scan.true_ranges[j] == pytest.approx(distance / math.cos(j * scan.angle_increment - i * math.pi / 180),
+                                                        abs=0.002)
+        assert all(abs(r / 0.015 - round(r / 0.015)) < 1e-6 for r in scan.ranges)   # quantised to 0.015 m
+        assert scan.points[0][1] == pytest.approx(INNER, abs=0.002)
+
+
+def test_noise_is_seeded_gaussian_and_no_hits_read_inf_or_zero():
+    with Session(room(half=1.5), seed=7) as a, Session(room(half=1.5), seed=7) as b:
+        first, second = a.scan(), b.scan()
+        assert first.ranges == second.ranges
+        errors = np.array(first.ranges) - np.array(first.true_ranges)
+        assert 0.006 < errors.std() < 0.015 and abs(errors.mean()) < 0.003
+    for mode, value in (("inf", math.inf), ("zero", 0.0)):
+        with Session(None, no_hit=mode) as session:   # nothing but the floor: horizontal beams hit nothing
+            scan = session.scan()
+            assert scan.ranges == [value] * 360 and all(p is None for p in scan.points)
+            assert front_distance(scan) is None
+
+
+def test_lidar_ignores_the_robot_and_sees_a_mesh():
+    """A triangle-mesh wall (concave static mesh) 1 m ahead of the LiDAR; nothing closer (no self hits)."""
+    import trimesh
+
+    box = trimesh.creation.box((0.1, 2.0, 1.0))
+    wall = Shape("mesh", (1.0 + BURGER_SCAN_X + 0.05, 0.0, 0.5), vertices=np.asarray(box.vertices),
+                 faces=np.asarray(box.faces), model="maze", link="link", name="mesh")
+    with Session(Scene(source=None, shapes=[wall]), noise=False) as session:
+        scan = session.scan()
+        assert front_distance(scan, true=True) == pytest.approx(1.0, abs=0.002)
+        finite = [r for r in scan.true_ranges if math.isfinite(r)]
+        assert min(finite) > 0.99
+
+
+def test_diff_drive_ramp_is_the_plugins():
+    params = DriveParams("l", "r", wheel_separation=0.16, wheel_radius=0.033, acceleration=1.0, torque=10.0,
+                         update_rate=30.0, from_plugin=True)
+    drive = DiffDrive(params, command=(0.2, 1.0))
+    assert drive.targets() == pytest.approx((0.2 - 0.08, 0.2 + 0.08))
+    left, right = drive.update(1 / 30)
+    assert drive.rim == pytest.approx([1 / 30, 1 / 30]) and left == pytest.approx(1 / 30 / 0.033)
+    for _ in range(3):
+        drive.update(1 / 30)
+    assert drive.rim == pytest.approx([0.12, 4 / 30])      # left reached its target, right still ramping
+    for _ in range(5):
+        drive.update(1 / 30)
+    assert drive.rim == pytest.approx([0.12, 0.28])
+    slow = DiffDrive(dataclasses.replace(params, acceleration=0.15), command=(0.2, 0.0), rim=[0.192, 0.0])
+    slow.update(1 / 30)
+    assert slow.rim == pytest.approx([0.2, 0.005])          # within 0.01 m/s of the target: set directly
+    instant = DiffDrive(dataclasses.replace(params, acceleration=0.0), command=(0.2, 0.0))
+    assert instant.update(1 / 30) == pytest.approx((0.2 / 0.033, 0.2 / 0.033))
+
+
+def test_drives_and_stops_like_the_plugin():
+    """0.2 m/s for 2 s: 0.4 m less the ramp's 0.02 m; stopping from 0.22 m/s at 1 m/s² takes ~0.024 m."""
+    with Session(None, noise=False) as session:
+        settle(session, 0.3)
+        session.cmd_vel(0.2)
+        session.run(2.0)
+        odom = session.odometry()
+        assert odom.x == pytest.approx(0.38, abs=0.015) and abs(odom.y) < 0.01
+        assert odom.v == pytest.approx(0.2, abs=0.01)
+        session.cmd_vel(0.22)
+        session.run(1.0)
+        x0 = session.odometry().x
+        session.cmd_vel(0.0)
+        session.run(1.0)
+        odom = session.odometry()
+        assert odom.x - x0 == pytest.approx(0.0242, abs=0.008) and abs(odom.v) < 0.002
+
+
+def test_spin_in_place():
+    with Session(room()) as session:
+        result = spin(session, seconds=2 * math.pi / 1.5, omega=1.5)
+        assert result.ok and result.contacts == []
+        assert result.max_drift < 0.03 and result.drift < 0.01
+        assert result.turned == pytest.approx(2 * math.pi, rel=0.05)
+
+
+def test_spin_waffle():
+    with Session(room(), "waffle") as session:
+        result = spin(session, seconds=math.pi, omega=1.0)
+        assert result.ok and result.turned == pytest.approx(math.pi, rel=0.08)
+
+
+@pytest.mark.parametrize("kp", [0.5, 1.0])
+def test_stop_at_wall_with_a_proportional_gain(kp):
+    with Session(room(half=1.5), spawn=(-0.5, 0.0, 0.0)) as session:
+        result = stop_at_wall(session, target=0.5, kp=kp, duration=12.0)
+    assert result.final_distance == pytest.approx(0.5, abs=0.05)
+    assert result.contacts == [] and result.stopped and result.ok
+    assert result.overshoot < 0.02
+    assert result.settling_time is not None and result.settling_time < 12.0
+    assert len(result.series["t"]) == 12 * 5 + 1 and result.series["true"][0] == pytest.approx(
+        1.5 - 0.075 - (-0.5 + BURGER_SCAN_X), abs=0.003)
+
+
+def test_stop_at_wall_integral_windup_hits_the_wall():
+    """A plain PI with a large ki winds up on the long approach and drives into the wall: reported, not hidden."""
+    with Session(room(half=1.5), spawn=(-0.5, 0.0, 0.0)) as session:
+        result = stop_at_wall(session, target=0.5, kp=0.5, ki=0.3, duration=12.0)
+    assert not result.ok and result.contacts
+    assert result.contacts[0]["shape"] == "room/Wall_0/collision"
+    assert result.overshoot > 0.2
+
+
+def test_contacts_and_clearance_name_the_shape():
+    post = Shape("cylinder", (1.0, 0.0, 0.25), radius=0.1, length=0.5, model="posts", link="l", name="post")
+    decoy = Shape("box", (1.0, 1.0, 0.25), size=(0.2, 0.2, 0.5), model="posts", link="l", name="decoy")
+    with Session(Scene(source=None, shapes=[post, decoy])) as session:
+        clearance = session.min_clearance(2.0)
+        # burger's front (base box and LiDAR housing) is 0.038 m ahead of base_footprint
+        assert clearance.shape == "posts/l/post" and clearance.distance == pytest.approx(0.9 - 0.038, abs=0.005)
+        assert session.min_clearance(0.5) is None and session.contacts() == []
+        session.cmd_vel(0.2)
+        session.run(6.0)
+        touching = session.contacts()
+        assert touching and {c.shape for c in touching} == {"posts/l/post"}
+        assert touching[0].link in ("base_link", "base_scan")
+        assert session.touches.to_list()[0]["shape"] == "posts/l/post"

@@ -1,0 +1,315 @@
+"""``worldgen validate`` end to end: inputs, spawn sources, the simulator's checks, reports and exit codes."""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+from lxml import etree
+
+from conftest import EXAMPLES
+from worldgen.cli import main
+from worldgen.validate import Options, parse_spawn, plan, run_job
+
+CLASS_WORLD = "worlds/Intro-Robotics-UChicago-Spring-2022__warmup_project__worlds_turtlebot3_in_enclosed_room.world"
+CLASS_LAUNCH = "launch/Intro-Robotics-UChicago-Spring-2022__warmup_project__launch_turtlebot3_in_room.launch"
+
+
+def box_link(name: str, start, end, thickness=0.15, height=0.5) -> str:
+    (x0, y0), (x1, y1) = start, end
+    yaw = math.atan2(y1 - y0, x1 - x0)
+    length = math.dist(start, end)
+    return f"""
+      <link name='{name}'>
+        <pose>{(x0 + x1) / 2} {(y0 + y1) / 2} 0 0 0 {yaw}</pose>
+        <collision name='{name}_Collision'>
+          <pose>0 0 {height / 2} 0 0 0</pose>
+          <geometry><box><size>{length} {thickness} {height}</size></box></geometry>
+        </collision>
+      </link>"""
+
+
+def write_world(path: Path, walls, size: float | None = None) -> Path:
+    """A world with a ground plane and one static model of wall boxes (start, end) 0.5 m high."""
+    links = "".join(box_link(f"Wall_{i}", a, b) for i, (a, b) in enumerate(walls))
+    path.write_text(f"""<?xml version='1.0'?>
+<sdf version='1.6'>
+  <world name='default'>
+    <model name='ground_plane'>
+      <static>1</static>
+      <link name='link'>
+        <collision name='collision'><geometry><plane><normal>0 0 1</normal><size>100 100</size></plane></geometry>
+        </collision>
+      </link>
+    </model>
+    <model name='room'>
+      <static>1</static>{links}
+    </model>
+  </world>
+</sdf>
+""", encoding="utf-8")
+    return path
+
+
+def room_walls(size: float, gap: tuple[float, float] | None = None):
+    """The four walls of a size × size room centred on the origin; ``gap`` = (x0, x1) cut from the bottom wall."""
+    h = size / 2
+    bottom = [((-h, -h), (h, -h))] if gap is None else [((-h, -h), (gap[0], -h)), ((gap[1], -h), (h, -h))]
+    return bottom + [((h, -h), (h, h)), ((h, h), (-h, h)), ((-h, h), (-h, -h))]
+
+
+def run_cli(*args):
+    result = CliRunner().invoke(main, ["validate", *(str(a) for a in args)], catch_exceptions=False)
+    return result
+
+
+def as_json(*args):
+    out = run_cli(*args, "--format", "json")
+    return out.exit_code, json.loads(out.output)
+
+
+# --------------------------------------------------------------------------------------------- the class room
+
+def test_class_room_with_the_course_launch_file(corpus):
+    code, doc = as_json(corpus / CLASS_WORLD, "--launch", corpus / CLASS_LAUNCH)
+    assert code == 0 and doc["ok"] is True
+    [r] = doc["results"]
+    assert r["spawn"] == [-5.5, -1.0, 0.0]
+    assert r["spawn_source"].startswith("from launch file") and CLASS_LAUNCH.split("/")[1] in r["spawn_source"]
+    m = r["metrics"]
+    assert m["enclosed"] is True
+    # the <state> block moved the room: its inner faces are x -7.257 … -2.557, y -3.761 … 0.939
+    assert m["enclosed_area_m2"] == pytest.approx(4.7 * 4.7, rel=0.01)
+    assert m["min_clearance_m"] == pytest.approx(7.257 - 5.5 - 0.102, abs=0.005)   # the burger's back to Wall_1
+    assert m["lidar_beams"] == 360 and 0 < m["lidar_no_hit_beams"] < 60           # only the far corners > 3.5 m
+    assert m["lidar_nearest_m"] == pytest.approx(7.257 - 5.5 - 0.032, abs=0.03)
+    assert abs(m["lidar_nearest_bearing_deg"] - 180) < 3
+    assert m["spin_drift_m"] < 0.05 and m["spin_touched"] == []
+    assert m["stop_distance_m"] == pytest.approx(0.5, abs=0.05) and m["stop_touched"] == []
+    # the launch file's $(find warmup_project) does not resolve here: it says which world it validated instead
+    said = [f for f in r["findings"] if f["check"] == "launch" and "given on the command line" in f["message"]]
+    assert len(said) == 1
+
+
+def test_class_launch_file_alone_cannot_find_its_world(corpus):
+    code, doc = as_json(corpus / CLASS_LAUNCH, "--skip-sim")
+    assert code == 1
+    [r] = doc["results"]
+    assert r["spawn"] == [-5.5, -1.0, 0.0]
+    assert any(f["check"] == "launch" and f["severity"] == "error" and "cannot be found" in f["message"]
+               for f in r["findings"])
+    assert r["skipped"]["enclosed"] == "no world to read"
+
+
+# ----------------------------------------------------------------------------------------- enclosure end to end
+
+def test_room_with_half_metre_gap_fails_and_names_it(tmp_path):
+    world = write_world(tmp_path / "gap.world", room_walls(5.0, gap=(0.5, 1.0)))
+    code, doc = as_json(world, "--skip-sim")
+    assert code == 1
+    r = doc["results"][0]
+    assert r["metrics"]["enclosed"] is False
+    [gap] = r["metrics"]["gaps"]
+    assert math.dist(gap["centre"], (0.75, -2.5)) < 0.3 and gap["width"] == pytest.approx(0.5, abs=0.02)
+    [finding] = [f for f in r["findings"] if f["check"] == "enclosed"]
+    assert finding["severity"] == "error" and "0.50 m gap at (0.75, -2.5" in finding["message"]
+
+
+def test_spawn_inside_a_wall_fails(tmp_path):
+    world = write_world(tmp_path / "room.world", room_walls(5.0))
+    code, doc = as_json(world, "--skip-sim", "--spawn", "2.5,0.3")
+    assert code == 1
+    found = {(f["check"], f["severity"]) for f in doc["results"][0]["findings"]}
+    assert {("enclosed", "error"), ("spawn-clear", "error")} <= found
+    assert doc["results"][0]["metrics"]["spawn_inside"] == "room/Wall_1/Wall_1_Collision"
+
+
+# ------------------------------------------------------------------------------------------------ reports
+
+def test_json_shape(tmp_path):
+    world = write_world(tmp_path / "room.world", room_walls(4.0))
+    code, doc = as_json(world, "--spawn", "0.5,0.2,1.57")
+    assert code == 0 and set(doc) == {"ok", "results"}
+    [r] = doc["results"]
+    assert {"path", "ok", "spawn", "spawn_source", "findings", "metrics"} <= set(r)
+    assert r["spawn"] == [0.5, 0.2, 1.57] and r["spawn_source"] == "from --spawn"
+    assert r["checks"] == ["parse", "enclosed", "spawn-clear", "settle", "lidar", "spin", "stop-at-wall"]
+    for key in ("enclosed", "min_clearance_m", "lidar_no_hit_beams"):
+        assert key in r["metrics"]
+    assert r["metrics"]["lidar_no_hit_beams"] == 0          # a 4 m room: every wall within 3.5 m
+    for f in r["findings"]:
+        assert set(f) <= {"check", "severity", "message", "where", "fix"}
+
+
+def test_junit_has_a_testcase_per_file_and_check(tmp_path):
+    good = write_world(tmp_path / "good.world", room_walls(4.0))
+    bad = write_world(tmp_path / "bad.world", room_walls(4.0, gap=(0.0, 0.6)))
+    report = tmp_path / "reports" / "validate.xml"
+    out = run_cli(good, bad, "--skip-sim", "--junit", report)
+    assert out.exit_code == 1
+    root = etree.parse(str(report)).getroot()
+    [suite] = root.findall("testsuite")
+    cases = {(c.get("classname"), c.get("name")): c for c in suite.findall("testcase")}
+    for path in (good, bad):
+        for check in ("parse", "enclosed", "spawn-clear", "settle", "lidar", "spin", "stop-at-wall"):
+            assert (str(path), check) in cases
+    assert cases[str(bad), "enclosed"].find("failure") is not None
+    assert "0.60 m gap" in cases[str(bad), "enclosed"].find("failure").get("message")
+    assert cases[str(good), "enclosed"].find("failure") is None
+    assert cases[str(good), "spin"].find("skipped") is not None
+    assert suite.get("tests") == "14" and suite.get("failures") == "1" and suite.get("skipped") == "8"
+    assert not list(report.parent.glob(".*.tmp"))   # written atomically: no temporary left behind
+
+
+def test_text_report_is_a_table_with_findings_errors_first(tmp_path):
+    bad = write_world(tmp_path / "bad.world", room_walls(4.0, gap=(0.0, 0.6)))
+    out = run_cli(bad, "--skip-sim")
+    lines = out.output.splitlines()
+    assert lines[0].split()[:3] == ["file", "verdict", "enclosed"]
+    assert lines[1].split()[1:3] == ["FAIL", "NO"]
+    severities = [line.split()[0] for line in lines[3:] if line.startswith("    ") and not line.startswith("     ")]
+    assert severities and severities == sorted(severities, key=["error", "warning", "info"].index)
+    assert lines[-1] == "1 file(s): 0 passed, 1 failed"
+
+
+# --------------------------------------------------------------------------------------------------- LiDAR
+
+@pytest.mark.parametrize("mode, reading", [("inf", "inf"), ("zero", 0.0)])
+def test_lidar_no_hit_reads_inf_or_zero_in_a_big_room(tmp_path, mode, reading):
+    world = write_world(tmp_path / "hall.world", room_walls(8.0))   # 8 m: from the middle no wall within 3.5 m
+    code, doc = as_json(world, "--lidar-no-hit", mode)
+    m = doc["results"][0]["metrics"]
+    assert code == 0    # a warning, not a failure
+    assert m["lidar_no_hit_beams"] == 360 and m["lidar_no_hit_value"] == mode
+    assert m["lidar_no_hit_reading"] == reading
+    [warning] = [f for f in doc["results"][0]["findings"] if f["check"] == "lidar"]
+    assert ("read inf" if mode == "inf" else "read 0") in warning["message"]
+    # nothing within range ahead or anywhere: stop-at-wall says so instead of failing
+    stop = [f for f in doc["results"][0]["findings"] if f["check"] == "stop-at-wall"]
+    assert stop and stop[0]["severity"] == "info"
+
+
+def test_stop_at_wall_turns_to_face_the_nearest_wall(tmp_path):
+    # a 6 m room, spawn 1.2 m from the left wall facing +x: nothing within 3.5 m ahead, the left wall behind
+    world = write_world(tmp_path / "wide.world", room_walls(6.0))
+    code, doc = as_json(world, "--spawn", "-1.8,0.4,0")
+    m = doc["results"][0]["metrics"]
+    assert code == 0
+    assert m["stop_distance_m"] == pytest.approx(0.5, abs=0.05)
+    assert abs(abs(m["stop_heading_deg"]) - 180) < 10
+
+
+# ------------------------------------------------------------------------------------------------ exit codes
+
+def test_exit_code_2_for_bad_input_with_one_line(tmp_path):
+    world = write_world(tmp_path / "room.world", room_walls(4.0))
+    for args in ([tmp_path / "missing.world"], [world, "--spawn", "1,x"], [world, "--robot", "roomba"],
+                 [world, "--model-path", tmp_path / "nope"], [world, "--launch", tmp_path / "no.launch"]):
+        proc = subprocess.run([sys.executable, "-m", "worldgen", "validate", *map(str, args)],
+                              capture_output=True, text=True)
+        assert proc.returncode == 2, args
+        assert proc.stdout == "" and len(proc.stderr.strip().splitlines()) == 1, proc.stderr
+        assert "Traceback" not in proc.stderr
+
+
+def test_exit_codes_0_and_1(tmp_path):
+    world = write_world(tmp_path / "room.world", room_walls(4.0))
+    assert run_cli(world, "--skip-sim").exit_code == 0
+    assert run_cli(world, "--skip-sim", "--spawn", "9,9").exit_code == 1
+
+
+def test_parse_spawn_forms():
+    assert parse_spawn("1,2") == (1.0, 2.0, 0.0)
+    assert parse_spawn(" -5.5, -1.0 , 1.57") == (-5.5, -1.0, 1.57)
+    assert parse_spawn("1,2,0,3.14") == (1.0, 2.0, 3.14)   # X,Y,Z,YAW as launch files write it
+
+
+# ------------------------------------------------------------------------------------ inputs and -j N
+
+def test_results_keep_input_order_with_two_workers(tmp_path):
+    worlds = [write_world(tmp_path / f"room{i}.world", room_walls(3.0 + i, gap=(0.0, 0.4) if i == 1 else None))
+              for i in range(3)]
+    code, doc = as_json(*worlds, "-j", "2")
+    assert [r["path"] for r in doc["results"]] == [str(w) for w in worlds]
+    assert [r["ok"] for r in doc["results"]] == [True, False, True]
+    assert code == 1
+
+
+def test_crashed_simulator_becomes_a_finding(tmp_path, monkeypatch):
+    helper = tmp_path / "crashing_job.py"
+    helper.write_text("import os\n\ndef simulate(stage_file=None, **kwargs):\n"
+                      "    open(stage_file, 'w').write('spinning in place')\n    os.abort()\n")
+    monkeypatch.setenv("PYTHONPATH", str(tmp_path))
+    monkeypatch.setattr("worldgen.validate.SIM_JOB", "crashing_job:simulate")
+    world = write_world(tmp_path / "room.world", room_walls(4.0))
+    [job] = plan([world], Options())
+    result = run_job(job, Options())
+    [crash] = [f for f in result.findings if f.severity == "error"]
+    assert crash.message == "pybullet crashed (killed by SIGABRT) while spinning in place"
+    assert result.skipped["spin"] == "the simulation did not run to the end"
+    assert result.metrics["enclosed"] is True   # the geometric checks still report
+
+
+def test_package_folder_validates_each_launch_file(tmp_path):
+    pkg = tmp_path / "ws" / "src" / "my_room"
+    (pkg / "launch").mkdir(parents=True)
+    (pkg / "worlds").mkdir()
+    write_world(pkg / "worlds" / "room.world", room_walls(4.0))
+    (pkg / "package.xml").write_text("""<?xml version="1.0"?>
+<package format="2">
+  <name>my_room</name><version>0.0.0</version><description>room</description>
+  <maintainer email="a@b.c">a</maintainer><license>MIT</license>
+  <buildtool_depend>catkin</buildtool_depend>
+  <exec_depend>gazebo_ros</exec_depend>
+</package>
+""", encoding="utf-8")
+    (pkg / "CMakeLists.txt").write_text("cmake_minimum_required(VERSION 3.0.2)\nproject(my_room)\n"
+                                        "find_package(catkin REQUIRED)\ncatkin_package()\n"
+                                        "install(DIRECTORY launch worlds DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})\n")
+    (pkg / "launch" / "room.launch").write_text("""<launch>
+  <arg name="x_pos" default="0.8"/>
+  <arg name="y_pos" default="-0.6"/>
+  <include file="$(find gazebo_ros)/launch/empty_world.launch">
+    <arg name="world_name" value="$(find my_room)/worlds/room.world"/>
+  </include>
+  <node pkg="gazebo_ros" type="spawn_model" name="spawn_urdf"
+        args="-urdf -model turtlebot3_burger -x $(arg x_pos) -y $(arg y_pos) -z 0 -param robot_description"/>
+</launch>
+""", encoding="utf-8")
+    code, doc = as_json(pkg, "--skip-sim")
+    paths = [r["path"] for r in doc["results"]]
+    assert paths == [str(pkg), str(pkg / "launch" / "room.launch")]
+    package_row, launch_row = doc["results"]
+    assert package_row["checks"] == ["package"]
+    assert launch_row["spawn"] == [0.8, -0.6, 0.0] and launch_row["metrics"]["enclosed"] is True
+    assert code == (0 if doc["ok"] else 1)
+    assert all(f["severity"] != "error" for r in doc["results"] for f in r["findings"]), doc
+
+
+# ------------------------------------------------------------------------------------------- our examples
+
+EXAMPLE_SPECS = sorted(EXAMPLES.glob("*.yaml"))
+
+
+@pytest.mark.skipif(not EXAMPLE_SPECS, reason="no examples/*.yaml yet")
+def test_our_examples_pass():
+    pytest.importorskip("worldgen.sdf.writer")
+    code, doc = as_json(*EXAMPLE_SPECS, "-j", "2")
+    failures = {r["path"]: [f["message"] for f in r["findings"] if f["severity"] == "error"]
+                for r in doc["results"] if not r["ok"]}
+    assert failures == {} and code == 0
+    for r in doc["results"]:
+        assert r["spawn_source"].startswith("from spec") and r["metrics"]["enclosed"] is True
+
+
+def test_progress_bar_only_on_a_terminal(tmp_path):
+    worlds = [write_world(tmp_path / f"r{i}.world", room_walls(4.0)) for i in range(2)]
+    proc = subprocess.run([sys.executable, "-m", "worldgen", "validate", "--skip-sim", *map(str, worlds)],
+                          capture_output=True, text=True, env=dict(os.environ))
+    assert proc.returncode == 0 and proc.stderr == ""

@@ -1,0 +1,57 @@
+"""The installed wheel carries the templates and the TurtleBot3 descriptions, not only the checkout."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+import zipfile
+from pathlib import Path
+
+import pytest
+
+from conftest import REPO
+
+
+@pytest.fixture(scope="module")
+def unpacked_wheel(tmp_path_factory) -> Path:
+    out = tmp_path_factory.mktemp("wheel")
+    proc = subprocess.run([sys.executable, "-m", "pip", "wheel", "--no-deps", "-q", "-w", str(out), str(REPO)],
+                          capture_output=True, text=True)
+    if proc.returncode != 0:
+        pytest.fail(f"building the wheel failed:\n{proc.stderr[-2000:]}")
+    wheel = next(out.glob("worldgen-*.whl"))
+    site = out / "site"
+    zipfile.ZipFile(wheel).extractall(site)
+    return site
+
+
+def _run_from_wheel(site: Path, code: str, cwd: Path) -> subprocess.CompletedProcess:
+    env = dict(os.environ, PYTHONPATH=str(site))
+    return subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=cwd, env=env)
+
+
+def test_wheel_holds_templates_and_robot_descriptions(unpacked_wheel):
+    pkg = unpacked_wheel / "worldgen"
+    assert list((pkg / "templates").rglob("*")), "templates/ is not in the wheel"
+    xacros = sorted(p.name for p in (pkg / "robots" / "worldgen_turtlebot3" / "urdf").glob("*.xacro"))
+    for model in ("burger", "waffle", "waffle_pi"):
+        assert f"turtlebot3_{model}.urdf.xacro" in xacros
+
+
+def test_course_and_robot_work_from_the_wheel(unpacked_wheel, tmp_path):
+    code = (
+        "import sys, worldgen\n"
+        f"assert worldgen.__file__.startswith({str(unpacked_wheel)!r}), worldgen.__file__\n"
+        "from worldgen.robots import robot_urdf\n"
+        "assert '<robot' in robot_urdf('waffle_pi')\n"
+        "from worldgen.cli import main\n"
+        "sys.argv = ['worldgen', 'course', '--workspace', 'ws']\n"
+        "main()\n"
+    )
+    proc = _run_from_wheel(unpacked_wheel, code, tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    src = tmp_path / "ws" / "src"
+    assert (next(src.rglob("stop_at_wall.py"))).stat().st_mode & 0o111
+    assert next(src.rglob("turtlebot3_in_enclosed_room.launch")).is_file()
+    assert next(src.rglob("*.world")).is_file()

@@ -1,0 +1,493 @@
+"""The validation checks: each turns a scene (and, for the simulated ones, numbers measured in pybullet) into
+findings a student can act on, plus metrics a program can read.
+
+Geometric checks run here, in the calling process: ``parse`` (the reader's own findings), ``enclosed`` (see
+:mod:`worldgen.enclosure`) and ``spawn-clear``. The simulated checks — ``settle``, ``lidar``, ``spin`` and
+``stop-at-wall`` — run together in one child process per world (:func:`simulate`, through
+:func:`worldgen.sim.process.run_isolated`), which returns plain numbers; :func:`sim_findings` judges them.
+"""
+
+from __future__ import annotations
+
+import math
+import xml.etree.ElementTree as ET
+from dataclasses import dataclass
+from functools import lru_cache
+
+from .findings import Finding
+from .scene import Scene
+
+GEOMETRIC_CHECKS = ("parse", "enclosed", "spawn-clear")
+SIM_CHECKS = ("settle", "lidar", "spin", "stop-at-wall")
+CLIMB = 0.010            # TurtleBot3's threshold of climbing: anything lower is not in the robot's way
+SPIN_DRIFT_LIMIT = 0.05  # m: spinning in place must keep the robot within this of where it started
+STOP_TARGET = 0.5        # m: stop-at-wall drives to this distance from the wall ahead
+STOP_TOLERANCE = 0.05    # m: and must end within this of it
+TILT_LIMIT = 10.0        # degrees: an upright robot after settling
+GROUND_LIMIT = 0.02      # m: base_footprint within this of the floor after settling
+MAX_GAP_FINDINGS = 6     # gaps named one by one; the rest are summed up in one finding
+FLOOR_STEP = 0.1         # m: a slab no higher than this under the spawn is the floor the robot stands on
+
+
+# --------------------------------------------------------------------------------------------------- robot
+
+@dataclass(frozen=True)
+class RobotBody:
+    """A robot's outline as the geometric checks need it, in its base frame (base_footprint, x forward).
+
+    ``footprint`` is the convex hull of every collision shape seen from above; ``width`` its extent across
+    (y), ``height`` its top; ``turn_radius`` the farthest footprint point from the base origin (what sweeps
+    the floor when it turns in place); ``lidar_height`` the LiDAR origin above the floor (None: no LiDAR).
+    """
+
+    name: str
+    footprint: tuple[tuple[float, float], ...]
+    width: float
+    length: float
+    height: float
+    turn_radius: float
+    lidar_height: float | None
+    lidar_range: float = 3.5
+    lidar_beams: int = 360
+
+
+@lru_cache(maxsize=8)
+def robot_body(robot: str = "burger") -> RobotBody:
+    """The :class:`RobotBody` of a model name or URDF/xacro file (raises InputError for a bad one)."""
+    from .robots import robot_urdf
+    from .robots.profile import robot_profile
+
+    urdf = robot_urdf(robot)
+    profile = robot_profile(urdf, source=str(robot))
+    return _body_from_urdf(urdf, profile, name=str(robot))
+
+
+def _body_from_urdf(urdf: str, profile, name: str) -> RobotBody:
+    import numpy as np
+    import shapely
+
+    from .robots.profile import _rpy, link_frames
+
+    frames = link_frames(profile.joints, profile.root_link)
+    points = []
+    for link in ET.fromstring(urdf).findall("link"):
+        if link.get("name") not in frames:
+            continue
+        (lx, ly, lz), rows = frames[link.get("name")]
+        link_rot, link_pos = np.array(rows), np.array([lx, ly, lz])
+        for collision in link.findall("collision"):
+            local = _geometry_points(collision.find("geometry"))
+            if local is None:
+                continue
+            origin = collision.find("origin")
+            xyz = _floats(origin.get("xyz") if origin is not None else None)
+            rpy = _floats(origin.get("rpy") if origin is not None else None)
+            in_link = local @ np.array(_rpy(rpy)).T + np.array(xyz)
+            points.append(in_link @ link_rot.T + link_pos)
+    if not points:   # no collision geometry at all: a TurtleBot3 burger's box stands in
+        points = [np.array([[x, y, z] for x in (-0.102, 0.038) for y in (-0.089, 0.089) for z in (0.0, 0.19)])]
+    cloud = np.vstack(points)
+    hull = shapely.MultiPoint(cloud[:, :2]).convex_hull
+    ring = tuple((round(float(x), 5), round(float(y), 5)) for x, y in list(hull.exterior.coords)[:-1])
+    lidar_height = None
+    if profile.lidar is not None and profile.lidar.link in frames:
+        lidar_height = frames[profile.lidar.link][0][2] + profile.lidar.pose[2]
+    return RobotBody(
+        name=name, footprint=ring,
+        width=float(cloud[:, 1].max() - cloud[:, 1].min()), length=float(cloud[:, 0].max() - cloud[:, 0].min()),
+        height=float(cloud[:, 2].max()), turn_radius=float(np.hypot(cloud[:, 0], cloud[:, 1]).max()),
+        lidar_height=lidar_height,
+        lidar_range=profile.lidar.range_max if profile.lidar else 3.5,
+        lidar_beams=profile.lidar.samples if profile.lidar else 360)
+
+
+def _floats(text: str | None) -> tuple[float, float, float]:
+    values = [float(v) for v in (text or "").split()[:3]]
+    return tuple(values + [0.0] * (3 - len(values)))
+
+
+def _geometry_points(geometry):
+    """Points whose hull bounds a URDF collision geometry, in its own frame (None for meshes and unknowns)."""
+    import numpy as np
+
+    if geometry is None or not len(geometry):
+        return None
+    shape = geometry[0]
+    if shape.tag == "box":
+        hx, hy, hz = (v / 2 for v in _floats(shape.get("size")))
+        return np.array([[sx * hx, sy * hy, sz * hz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)])
+    if shape.tag == "cylinder":
+        r, half = float(shape.get("radius", 0)), float(shape.get("length", 0)) / 2
+        a = np.linspace(0, 2 * math.pi, 16, endpoint=False)
+        ring = np.column_stack([r * np.cos(a), r * np.sin(a)])
+        return np.vstack([np.column_stack([ring, np.full(16, z)]) for z in (-half, half)])
+    if shape.tag == "sphere":
+        r = float(shape.get("radius", 0))
+        return np.array([[sx * r, sy * r, sz * r] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)])
+    return None
+
+
+def placed_footprint(body: RobotBody, spawn: tuple[float, float, float]):
+    """The robot's footprint (shapely Polygon) at world pose ``spawn`` = (x, y, yaw)."""
+    import shapely
+
+    x, y, yaw = spawn
+    c, s = math.cos(yaw), math.sin(yaw)
+    return shapely.Polygon([(x + c * px - s * py, y + s * px + c * py) for px, py in body.footprint])
+
+
+# ----------------------------------------------------------------------------------------------- outcomes
+
+@dataclass
+class Outcome:
+    """What one check says: its findings and the metrics it measured."""
+
+    findings: list[Finding]
+    metrics: dict
+
+
+def _xy(p) -> str:
+    return f"({p[0]:.2f}, {p[1]:.2f})"
+
+
+# ------------------------------------------------------------------------------------------- parse
+
+def check_parse(scene: Scene) -> Outcome:
+    """The reader's findings, carried over as they are, and what the scene holds."""
+    kinds: dict[str, int] = {}
+    for s in scene.shapes:
+        kinds[s.kind] = kinds.get(s.kind, 0) + 1
+    return Outcome(list(scene.findings), {"sdf_version": scene.sdf_version, "shapes": len(scene.shapes),
+                                          "shape_kinds": dict(sorted(kinds.items())),
+                                          "models": len(scene.models)})
+
+
+# ------------------------------------------------------------------------------------------------ ground
+
+def floor_under(scene: Scene, spawn: tuple[float, float, float]) -> tuple[float, dict]:
+    """The floor height at the spawn point: 0, or the top of a floor slab under it no higher than a step the
+    robot would be lifted onto (Gazebo's asphalt_plane is a 0.1 m box half sunk into the ground)."""
+    from .enclosure import ground_under
+
+    height, label = ground_under(scene, spawn[:2], FLOOR_STEP)
+    return height, {"floor_height_m": height, "floor": label}
+
+
+# ---------------------------------------------------------------------------------------------- enclosed
+
+def check_enclosed(scene: Scene, spawn: tuple[float, float, float], body: RobotBody, ground: float = 0.0
+                   ) -> Outcome:
+    """The spawn lies in a region the walls close at LiDAR height (above the floor at ``ground``);
+    otherwise, where each way out is."""
+    from .enclosure import enclosure
+
+    height = ground + (body.lidar_height if body.lidar_height is not None else min(body.height, 0.182))
+    found = enclosure(scene, spawn[:2], height)
+    metrics = {"enclosed": found.enclosed, "slice_height_m": height,
+               "gaps": [g.to_dict() for g in found.gaps],
+               "enclosed_area_m2": found.region_area,
+               "nearest_wall_m": found.nearest}
+    where = f"spawn {_xy(spawn)}"
+    if found.inside is not None:
+        metrics["spawn_inside"] = found.inside
+        return Outcome([Finding(
+            "enclosed", "error", f"the spawn point {_xy(spawn)} is inside {found.inside or 'an obstacle'}",
+            where=where, fix="move the spawn pose (launch x_pos/y_pos, spec robot.at or --spawn) onto free floor "
+                             "inside the room")], metrics)
+    if found.enclosed:
+        return Outcome([], metrics)
+    if not found.has_walls:
+        return Outcome([Finding(
+            "enclosed", "error",
+            f"no walls around the spawn: nothing in this world stands at LiDAR height ({height:.3f} m)",
+            where=where, fix="add walls round the robot (a room in the spec, or walls in the Building Editor), "
+                             "or include the model that holds them (is a --model-path missing?)")], metrics)
+    if not found.gaps:
+        if found.rooms:
+            x0, y0, x1, y1 = found.rooms[0]
+            metrics["nearest_room"] = list(found.rooms[0])
+            message = (f"the spawn {_xy(spawn)} is outside the walls: the nearest closed room spans "
+                       f"x {x0:.2f} … {x1:.2f}, y {y0:.2f} … {y1:.2f} (centre {_xy(((x0 + x1) / 2, (y0 + y1) / 2))})")
+            fix = "move the spawn into that room (launch x_pos/y_pos, spec robot.at or --spawn)"
+        else:
+            message = (f"the walls do not surround the spawn: the nearest is {found.nearest:.2f} m away and no "
+                       "opening narrower than 8 m would close the region round it")
+            fix = "put the spawn inside a room, or close the room round it"
+        return Outcome([Finding("enclosed", "error", message, where=where, fix=fix)], metrics)
+    findings = []
+    for gap in found.gaps[:MAX_GAP_FINDINGS]:
+        fits = gap.width >= body.width
+        side = f" between {' and '.join(gap.between)}" if gap.between else ""
+        passage = (f"the {body.name} ({body.width:.3f} m wide) can drive out through it" if fits else
+                   f"too narrow for the {body.name} ({body.width:.3f} m wide), but LiDAR beams pass through it")
+        findings.append(Finding(
+            "enclosed", "error",
+            f"the room is open: a {gap.width:.2f} m gap at {_xy(gap.centre)}{side}; {passage}",
+            where=f"gap from {_xy(gap.ends[0])} to {_xy(gap.ends[1])}",
+            fix="close the gap (join the walls there, or remove the opening), or move the spawn into a "
+                "closed room"))
+    if len(found.gaps) > MAX_GAP_FINDINGS:
+        rest = found.gaps[MAX_GAP_FINDINGS:]
+        findings.append(Finding(
+            "enclosed", "error",
+            f"… and {len(rest)} more gaps, {min(g.width for g in rest):.2f} to {max(g.width for g in rest):.2f} m "
+            "wide (all listed in the JSON report's metrics.gaps)",
+            fix="close the gaps, or move the spawn into a closed room"))
+    metrics["robot_fits_gap"] = any(g.width >= body.width for g in found.gaps)
+    return Outcome(findings, metrics)
+
+
+# ------------------------------------------------------------------------------------------- spawn-clear
+
+def check_spawn_clear(scene: Scene, spawn: tuple[float, float, float], body: RobotBody, ground: float = 0.0
+                      ) -> Outcome:
+    """The robot's footprint at the spawn pose touches no wall or obstacle between the floor at ``ground``
+    (above the climbing threshold) and the robot's top; how far the nearest is; room to turn in place."""
+    import shapely
+
+    from .enclosure import footprints_between
+
+    robot = placed_footprint(body, spawn)
+    prints = footprints_between(scene, ground + CLIMB, ground + body.height)
+    centre = shapely.Point(spawn[:2])
+    metrics: dict = {"min_clearance_m": None, "nearest_obstacle": None, "turn_clearance_m": None}
+    if not prints:
+        return Outcome([], metrics)
+    distances = [(p.geometry.distance(robot), p.label) for p in prints]
+    clearance, nearest = min(distances)
+    turn = min(p.geometry.distance(centre) for p in prints) - body.turn_radius
+    metrics.update(min_clearance_m=clearance, nearest_obstacle=nearest, turn_clearance_m=turn)
+    where = f"spawn {_xy(spawn)}, yaw {spawn[2]:.2f}"
+    hit = sorted({label for d, label in distances if d <= 0})
+    if hit:
+        depth = max(p.geometry.intersection(robot).area for p in prints)
+        metrics["overlap_m2"] = depth
+        return Outcome([Finding(
+            "spawn-clear", "error",
+            f"the {body.name} spawns inside {', '.join(hit[:4])}{' …' if len(hit) > 4 else ''}",
+            where=where, fix="move the spawn pose onto free floor, or move the obstacle")], metrics)
+    if turn < 0:
+        return Outcome([Finding(
+            "spawn-clear", "warning",
+            f"{nearest} is {clearance:.3f} m from the robot: too close for it to turn in place "
+            f"(its corners sweep {body.turn_radius:.3f} m round its centre)",
+            where=where, fix=f"keep the spawn at least {body.turn_radius:.2f} m from walls and obstacles")],
+            metrics)
+    return Outcome([], metrics)
+
+
+# ------------------------------------------------------------------------------------------ simulated checks
+
+def sim_findings(numbers: dict, body: RobotBody, no_hit: str, ground: float = 0.0) -> Outcome:
+    """Judge the numbers :func:`simulate` measured (missing parts are skipped)."""
+    findings: list[Finding] = []
+    metrics: dict = {}
+    settle = numbers.get("settle")
+    if settle:
+        metrics.update(settle_tilt_deg=settle["tilt_deg"], settle_height_m=settle["z"],
+                       settle_moved_m=settle["moved"])
+        if settle["tilt_deg"] > TILT_LIMIT:
+            findings.append(Finding("settle", "error",
+                                    f"after {settle['time']:.1f} s the robot is tipped {settle['tilt_deg']:.0f}°",
+                                    where=_contacts_text(settle), fix="spawn it on flat, free floor"))
+        elif abs(settle["z"] - ground) > GROUND_LIMIT:
+            findings.append(Finding(
+                "settle", "error",
+                f"after {settle['time']:.1f} s the robot is {settle['z'] - ground:+.3f} m from the floor "
+                + ("(it fell through: there is no ground under it)" if settle["z"] < ground else
+                   "(it rests on something)"),
+                where=_contacts_text(settle), fix="give the world a ground plane and spawn the robot on it"))
+    scan = numbers.get("lidar")
+    if scan:
+        metrics.update(lidar_beams=scan["beams"], lidar_no_hit_beams=scan["no_hit"],
+                       lidar_no_hit_value=no_hit, lidar_no_hit_reading=scan.get("no_hit_reading"), lidar_nearest_m=scan["nearest"],
+                       lidar_nearest_bearing_deg=scan["nearest_bearing_deg"], lidar_farthest_m=scan["farthest"])
+        reads = "inf (as in Gazebo)" if no_hit == "inf" else "0 (as on the real robot)"
+        if scan["no_hit"] == scan["beams"]:
+            findings.append(Finding(
+                "lidar", "warning",
+                f"all {scan['beams']} beams hit nothing within {scan['range_max']:g} m and read {reads}",
+                fix="put walls within 3.5 m of the spawn, or make sure code handles ranges that read "
+                    + ("inf" if no_hit == "inf" else "0")))
+        elif scan["no_hit"]:
+            findings.append(Finding(
+                "lidar", "warning",
+                f"{scan['no_hit']} of {scan['beams']} beams hit nothing within {scan['range_max']:g} m and read "
+                f"{reads}: the room is larger than the LiDAR's range or open"
+                + (f" (first such beam at {scan['no_hit_bearings_deg'][0]:.0f}°)" if scan["no_hit_bearings_deg"]
+                   else ""),
+                fix="keep walls within 3.5 m of where the robot drives, or ignore "
+                    + ("inf" if no_hit == "inf" else "zero") + " readings in code (the real LDS-01 reads 0, "
+                    "Gazebo inf)"))
+    spin = numbers.get("spin")
+    if spin:
+        metrics.update(spin_drift_m=spin["drift"], spin_turned_rad=spin["turned"], spin_touched=spin["touched"])
+        if spin["touched"]:
+            findings.append(Finding("spin", "error",
+                                    f"spinning in place the robot touched {', '.join(spin['touched'])}",
+                                    where=_contacts_text(spin),
+                                    fix="move the spawn away from walls and obstacles"))
+        elif spin["drift"] > SPIN_DRIFT_LIMIT:
+            findings.append(Finding("spin", "error",
+                                    f"spinning in place the robot drifted {spin['drift'] * 100:.1f} cm "
+                                    f"(more than {SPIN_DRIFT_LIMIT * 100:.0f} cm)",
+                                    fix="spawn it on flat floor clear of obstacles"))
+    stop = numbers.get("stop")
+    if stop:
+        metrics.update(stop_distance_m=stop.get("distance"), stop_touched=stop.get("touched", []),
+                       stop_time_s=stop.get("time"), stop_target_m=STOP_TARGET,
+                       stop_heading_deg=stop.get("heading_deg"))
+        if stop.get("no_wall"):
+            findings.append(Finding("stop-at-wall", "info",
+                                    f"no wall within {stop.get('range', 3.5):g} m in any direction: stop at wall "
+                                    "was not tried"))
+        elif stop.get("touched"):
+            findings.append(Finding("stop-at-wall", "error",
+                                    f"driving toward the wall the robot touched {', '.join(stop['touched'])} "
+                                    f"before stopping", where=_contacts_text(stop),
+                                    fix="an obstacle below the LiDAR plane is in the way, or the wall is too "
+                                        "close to brake; clear the path or move the spawn"))
+        elif stop.get("distance") is None or abs(stop["distance"] - STOP_TARGET) > STOP_TOLERANCE:
+            got = "no reading" if stop.get("distance") is None else f"{stop['distance']:.2f} m"
+            findings.append(Finding("stop-at-wall", "warning",
+                                    f"stop at wall ended at {got} from the wall instead of {STOP_TARGET} m "
+                                    f"after {stop.get('time', 0):.1f} s",
+                                    fix="check the floor ahead of the spawn is flat and free"))
+    for name, message in numbers.get("failed", {}).items():
+        findings.append(Finding(name, "error", message))
+    return Outcome(findings, metrics)
+
+
+def _contacts_text(part: dict) -> str | None:
+    points = part.get("contact_points") or []
+    return "; ".join(f"{c['link']} touched {c['shape']} at t = {c['time']:.1f} s" for c in points) or None
+
+
+# ------------------------------------------------------------------------------------- the simulator's job
+
+SETTLE_SECONDS = 1.0
+SPIN_OMEGA = 1.5            # rad/s: within both the burger's (2.84) and the waffle's (1.82) limits
+STOP_KP = 1.0
+FACE_TOLERANCE = math.radians(2)
+
+
+def simulate(world: str | None = None, world_text: str | None = None, source: str | None = None,
+             model_paths: list[str] = (), robot: str = "burger", spawn: list[float] = (0.0, 0.0, 0.0),
+             no_hit: str = "inf", stage_file: str | None = None) -> dict:
+    """Run the simulated checks on one world in this process and return plain numbers (JSON-safe).
+
+    Meant to run in a child process (``run_isolated("worldgen.checks:simulate", …)``): it reads the world
+    itself (from ``world``, or from ``world_text`` for a spec built in memory), spawns the robot, lets it
+    settle, takes a 360-beam scan, spins in place, then drives to 0.5 m from the nearest wall ahead (turning
+    to face the nearest wall first when nothing is within range ahead). Each stage is written to
+    ``stage_file`` before it starts, so that a crash can be reported as "while <stage>".
+    """
+    import time
+
+    from .sdf.reader import read_world, read_world_text
+    from .sim.behaviours import settle, spin, stop_at_wall
+    from .sim.session import Session
+
+    def stage(text: str) -> None:
+        if stage_file:
+            with open(stage_file, "w", encoding="utf-8") as fh:
+                fh.write(text)
+
+    started = time.perf_counter()
+    stage("reading the world")
+    if world_text is not None:
+        scene = read_world_text(world_text, source=source, model_paths=tuple(model_paths))
+    else:
+        scene = read_world(world, model_paths=tuple(model_paths))
+    stage("loading the world and the robot")
+    numbers: dict = {"ran": [], "failed": {}}
+    with Session(scene, robot, tuple(spawn), no_hit=no_hit) as session:
+        stage("letting the robot settle")
+        rest = settle(session, SETTLE_SECONDS)
+        numbers["ran"].append("settle")
+        numbers["settle"] = {"time": SETTLE_SECONDS, "z": rest.z, "moved": rest.drift,
+                             "tilt_deg": math.degrees(max(abs(rest.roll), abs(rest.pitch))),
+                             "contact_points": _touched_points(rest.contacts)}
+        if session.lidar is None:
+            numbers["failed"]["lidar"] = "the robot has no LiDAR (no ray sensor and no base_scan link)"
+            numbers["ran"].append("lidar")
+        else:
+            stage("scanning with the LiDAR")
+            numbers["lidar"] = _scan_numbers(session.scan())
+            numbers["ran"].append("lidar")
+        stage("spinning in place")
+        turn = spin(session, seconds=2 * math.pi / SPIN_OMEGA, omega=SPIN_OMEGA)
+        numbers["ran"].append("spin")
+        numbers["spin"] = {"drift": turn.max_drift, "turned": turn.turned, "touched": _touched(turn.contacts),
+                           "contact_points": _touched_points(turn.contacts)}
+        if session.lidar is not None:
+            stage("driving to the wall")
+            numbers["stop"] = _stop_at_wall(session, stop_at_wall)
+            numbers["ran"].append("stop-at-wall")
+        numbers["sim_seconds"] = session.t
+    numbers["wall_seconds"] = time.perf_counter() - started
+    stage("done")
+    return numbers
+
+
+def _scan_numbers(scan) -> dict:
+    true = scan.true_ranges
+    hits = [(r, i) for i, r in enumerate(true) if math.isfinite(r)]
+    misses = [i for i, r in enumerate(true) if not math.isfinite(r)]
+    nearest = min(hits) if hits else None
+    return {"beams": len(true), "no_hit": len(misses), "range_max": scan.range_max,
+            "no_hit_reading": scan.ranges[misses[0]] if misses else None,
+            "no_hit_bearings_deg": [math.degrees(scan.angle_min + i * scan.angle_increment) for i in misses[:1]],
+            "nearest": nearest[0] if nearest else None,
+            "nearest_bearing_deg": math.degrees(scan.angle_min + nearest[1] * scan.angle_increment)
+            if nearest else None,
+            "farthest": max(hits)[0] if hits else None,
+            "ranges_sample": [scan.ranges[i] for i in range(0, len(scan.ranges), 90)]}
+
+
+def _touched(contacts: list[dict]) -> list[str]:
+    return sorted({c["shape"] for c in contacts})
+
+
+def _touched_points(contacts: list[dict]) -> list:
+    return [{"shape": c["shape"], "link": c["link"], "time": c["time"]} for c in contacts[:3]]
+
+
+def _stop_at_wall(session, stop_at_wall) -> dict:
+    """Face the nearest wall when nothing is in range straight ahead, then run the P controller to 0.5 m."""
+    from .sim.lidar import front_distance
+
+    scan = session.scan(noise=False)
+    ahead = front_distance(scan, true=True)
+    turned = False
+    if ahead is None:
+        hits = [(r, i) for i, r in enumerate(scan.true_ranges) if math.isfinite(r)]
+        if not hits:
+            return {"no_wall": True, "range": scan.range_max, "distance": None, "touched": []}
+        distance, i = min(hits)
+        _face(session, scan.angle_min + i * scan.angle_increment)
+        turned = True
+        ahead = front_distance(session.scan(noise=False), true=True)
+        if ahead is None:
+            return {"no_wall": True, "range": scan.range_max, "distance": None, "touched": []}
+    speed = 0.22
+    duration = min(30.0, max(0.0, ahead - STOP_TARGET) / speed + 5.0)
+    start_t = session.t
+    run = stop_at_wall(session, target=STOP_TARGET, kp=STOP_KP, duration=duration, max_speed=speed)
+    return {"distance": run.final_distance, "touched": _touched(run.contacts),
+            "contact_points": _touched_points(run.contacts), "time": session.t - start_t,
+            "start_distance": ahead, "turned_to_face": turned, "overshoot": run.overshoot,
+            "heading_deg": math.degrees(session.odometry().yaw)}
+
+
+def _face(session, bearing: float) -> None:
+    """Turn in place until the robot faces ``bearing`` (rad, relative to its heading now)."""
+    target = session.odometry().yaw + bearing
+    for _ in range(200):   # at most 20 s
+        error = math.remainder(target - session.odometry().yaw, math.tau)
+        if abs(error) < FACE_TOLERANCE:
+            break
+        session.cmd_vel(0.0, max(-SPIN_OMEGA, min(SPIN_OMEGA, 2.0 * error)))
+        session.run(0.1)
+    session.cmd_vel(0.0, 0.0)
+    session.run(0.3)

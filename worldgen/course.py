@@ -1,0 +1,82 @@
+"""The class's catkin packages, ready for ``catkin_make``: ``WORKSPACE/src/intro_robo/``.
+
+* ``lab_a_spin_circles`` — ``scripts/spin_in_circles.py``: a constant Twist on ``cmd_vel``;
+* ``lab_a_stop_at_wall`` — ``scripts/stop_at_wall.py``: proportional control on the LiDAR's front distance
+  (``inf`` from Gazebo and ``0`` from the real LDS-01 both mean "nothing seen");
+* ``class_meeting_02_custom_gazebo_world`` — ``worlds/enclosed_room.world`` (built from the enclosed-room spec
+  shipped in ``templates/course/``) and ``launch/turtlebot3_in_enclosed_room.launch``;
+* ``intro_robo`` — a metapackage grouping the three.
+
+Each lab package also has a launch file that starts the class world with its node. The node scripts are rendered
+from ``templates/nodes/``; everything else comes from :mod:`worldgen.scaffold`, so the packages are exactly what
+``worldgen scaffold`` would make.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from .launch import default_launch_name, launch_xml, parse_node, render_template
+from .scaffold import PackageFiles, PackageRequest, package_files, package_request, world_from_spec
+
+REPOSITORY = "intro_robo"
+WORLD_PACKAGE = "class_meeting_02_custom_gazebo_world"
+DEPENDENCIES = ("rospy", "std_msgs", "geometry_msgs", "sensor_msgs")
+VERSION = "0.1.0"
+LICENSE = "BSD"
+SPIN = {"linear_speed": 0.1, "angular_speed": 0.5}
+STOP = {"target_distance": 0.5, "kp": 0.5, "max_speed": 0.2, "front_angle": 10}
+
+
+def _request(name: str, description: str, maintainer: str | None, exec_only=()) -> PackageRequest:
+    req = package_request(name, DEPENDENCIES, version=VERSION, description=description, licenses=[LICENSE],
+                          maintainers=[maintainer] if maintainer else ())
+    return PackageRequest(**{**req.__dict__, "exec_only": tuple(exec_only)})
+
+
+def course_files(maintainer: str | None = None) -> PackageFiles:
+    """Every file of the class repository, relative to ``src/intro_robo`` (see the module docstring)."""
+    from .resources import templates_dir
+
+    world_file, world_text, spawn = world_from_spec(templates_dir() / "course" / "enclosed_room.yaml")
+    worlds = {world_file: world_text}
+    launches = {default_launch_name(world_file): launch_xml(world_file, WORLD_PACKAGE, "env", spawn)}
+    world_pkg = package_files(
+        _request(WORLD_PACKAGE, "Class meeting 02: a custom Gazebo world (a closed room) and the launch file that "
+                                "puts a TurtleBot3 in it", maintainer), worlds, launches)
+
+    def lab(name: str, script: str, params: dict, description: str) -> PackageFiles:
+        node = parse_node(f"{name}/{script}")
+        launch_name = f"{node.name}.launch"
+        launch = launch_xml(world_file, WORLD_PACKAGE, "env", spawn, nodes=[node],
+                            launch_name=launch_name)
+        code = render_template(f"nodes/{script}.j2", package=name, **params)
+        return package_files(_request(name, description, maintainer, exec_only=[WORLD_PACKAGE]),
+                             launches={launch_name: launch}, scripts={script: code})
+
+    spin = lab("lab_a_spin_circles", "spin_in_circles.py", SPIN,
+               "Lab A: drive a TurtleBot3 in circles by publishing a Twist on cmd_vel")
+    stop = lab("lab_a_stop_at_wall", "stop_at_wall.py", STOP,
+               "Lab A: drive a TurtleBot3 to a wall and stop there, with proportional control on the LiDAR")
+    meta_req = package_request(REPOSITORY, [], version=VERSION, licenses=[LICENSE], meta=True,
+                               description="The intro robotics class: its labs and Gazebo worlds",
+                               maintainers=[maintainer] if maintainer else ())
+    meta = package_files(PackageRequest(**{**meta_req.__dict__, "exec_only": (
+        "lab_a_spin_circles", "lab_a_stop_at_wall", WORLD_PACKAGE)}))
+
+    merged = PackageFiles({}, set(), ())
+    for folder, pkg in ((REPOSITORY, meta), ("lab_a_spin_circles", spin), ("lab_a_stop_at_wall", stop),
+                        (WORLD_PACKAGE, world_pkg)):
+        placed = pkg.under(folder)
+        merged.files.update(placed.files)
+        merged.executable |= placed.executable
+    return merged
+
+
+def write_course(workspace: str | Path, *, force: bool = False, maintainer: str | None = None) -> Path:
+    """Write ``WORKSPACE/src/intro_robo`` all at once (nothing on error). An existing ``intro_robo`` folder is
+    refused unless ``force``, which replaces it. Returns the folder."""
+    from .fsio import write_tree
+
+    pkg = course_files(maintainer)
+    return write_tree(Path(workspace) / "src" / REPOSITORY, pkg.files, force=force, executable=pkg.executable)

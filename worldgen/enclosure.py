@@ -1,0 +1,490 @@
+"""Is the robot's spawn point inside a closed room, and if not, where is the way out?
+
+The scene is sliced by a horizontal plane at the robot's LiDAR height into 2-D footprints (boxes exactly at any
+orientation, cylinders and spheres as circles, meshes by their triangle/plane section), which are united with a
+0.5 mm buffer so that sub-millimetre slivers between walls count as closed. The spawn is enclosed when its
+free-space component does not reach the outside (a frame well beyond everything).
+
+When it does reach the outside, the gaps are found by morphological closing: closing the obstacle set with a
+disc of radius ``r`` plugs every opening narrower than ``2·r`` (a disc of diameter ``2·r`` cannot pass it), so
+the smallest ``r`` that cuts the spawn off from the outside measures the way out. The closing's new pieces that
+lie between the spawn's region and the outside are the gaps; where such a piece meets the outside is the gap's
+mouth, whose ends sit on the walls either side: its midpoint is where the gap is and the distance between its ends
+is its width. Plugging those pieces and repeating lists further ways out.
+
+Plain numbers in, plain numbers out: no pybullet here, only numpy and shapely (imported when first used).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from .scene import Scene, Shape
+
+SLIVER = 0.0005        # every footprint grows by this much: gaps under 1 mm are closed
+MARGIN = 1.0           # the "outside" frame lies this far beyond the scene and the spawn
+MAX_GAP = 8.0          # openings wider than this are not gaps any more: the walls do not surround the spawn
+WIDTH_TOLERANCE = 0.005
+MAX_GAP_ROUNDS = 5
+CIRCLE_SEGMENTS = 16   # per quarter circle, for cylinders and spheres
+PRISM_SIDES = 48       # tilted cylinders are sliced as prisms with this many sides
+
+
+@dataclass(frozen=True)
+class Footprint:
+    """One shape's section at the slicing height, with where it came from."""
+
+    label: str
+    geometry: object   # shapely geometry (Polygon / MultiPolygon)
+
+
+@dataclass(frozen=True)
+class Gap:
+    """A way out: ``centre`` and ``ends`` in world coordinates (m), ``width`` the distance between the ends,
+    ``between`` the labels of the shapes on either side."""
+
+    centre: tuple[float, float]
+    width: float
+    ends: tuple[tuple[float, float], tuple[float, float]]
+    between: tuple[str, ...] = ()
+
+    def to_dict(self) -> dict:
+        return {"centre": [round(c, 3) for c in self.centre], "width": round(self.width, 3),
+                "ends": [[round(c, 3) for c in e] for e in self.ends], "between": list(self.between)}
+
+
+@dataclass(frozen=True)
+class Enclosure:
+    """What the slice says about the spawn point.
+
+    ``enclosed`` is None when the spawn is inside a shape (``inside`` names it). ``has_walls`` is False when
+    nothing at all is cut by the slicing plane. ``region_area``/``region_bounds`` describe the free region around
+    the spawn when it is enclosed. ``nearest`` is the distance from the spawn to the nearest footprint.
+    ``rooms`` are the bounds (xmin, ymin, xmax, ymax) of closed regions elsewhere, nearest first, when the
+    spawn is not enclosed (where it probably should have been).
+    """
+
+    spawn: tuple[float, float]
+    height: float
+    enclosed: bool | None
+    inside: str | None = None
+    gaps: tuple[Gap, ...] = ()
+    has_walls: bool = True
+    region_area: float | None = None
+    region_bounds: tuple[float, float, float, float] | None = None
+    nearest: float | None = None
+    rooms: tuple[tuple[float, float, float, float], ...] = ()
+
+
+# --------------------------------------------------------------------------------------------------- slicing
+
+def rotation_matrix(q) -> "np.ndarray":
+    """3 × 3 rotation matrix of a unit quaternion (x, y, z, w)."""
+    import numpy as np
+
+    x, y, z, w = q
+    n = math.sqrt(x * x + y * y + z * z + w * w) or 1.0
+    x, y, z, w = x / n, y / n, z / n, w / n
+    return np.array([
+        [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+        [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+        [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)],
+    ])
+
+
+def _to_world(shape: Shape, local) -> "np.ndarray":
+    import numpy as np
+
+    return np.asarray(local, dtype=float) @ rotation_matrix(shape.orientation).T + np.asarray(shape.position)
+
+
+def _convex_section(points, z: float):
+    """Section of the convex hull of ``points`` (N × 3, world) by the plane at height ``z``.
+
+    The section of a convex hull is the convex hull of where the segments between its points cross the plane,
+    so this is exact for boxes at any orientation and for prisms.
+    """
+    import numpy as np
+    import shapely
+
+    d = points[:, 2] - z
+    if d.min() > 0 or d.max() < 0:
+        return None
+    i, j = np.triu_indices(len(points), k=1)
+    crossing = d[i] * d[j] < 0
+    t = d[i][crossing] / (d[i][crossing] - d[j][crossing])
+    hits = points[i][crossing] + (points[j][crossing] - points[i][crossing]) * t[:, None]
+    on_plane = points[np.abs(d) < 1e-12]
+    xy = np.vstack([hits[:, :2], on_plane[:, :2]])
+    if len(xy) < 3:
+        return None
+    hull = shapely.MultiPoint(xy).convex_hull
+    return hull if hull.geom_type == "Polygon" and hull.area > 0 else None
+
+
+def _box_corners(size) -> "np.ndarray":
+    import numpy as np
+
+    hx, hy, hz = (s / 2 for s in size)
+    return np.array([[sx * hx, sy * hy, sz * hz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)])
+
+
+def _cylinder_section(shape: Shape, z: float):
+    import numpy as np
+    import shapely
+
+    r, half = shape.radius, shape.length / 2
+    axis = rotation_matrix(shape.orientation)[:, 2]
+    cx, cy, cz = shape.position
+    if abs(axis[2]) > 1 - 1e-6:   # upright: an exact circle
+        if abs(z - cz) > half:
+            return None
+        return shapely.Point(cx, cy).buffer(r, quad_segs=CIRCLE_SEGMENTS)
+    a = np.linspace(0, 2 * math.pi, PRISM_SIDES, endpoint=False)
+    ring = np.column_stack([r * np.cos(a), r * np.sin(a)])
+    local = np.vstack([np.column_stack([ring, np.full(len(a), -half)]),
+                       np.column_stack([ring, np.full(len(a), half)])])
+    return _convex_section(_to_world(shape, local), z)
+
+
+def _sphere_section(shape: Shape, z: float):
+    import shapely
+
+    d = z - shape.position[2]
+    if abs(d) >= shape.radius:
+        return None
+    return shapely.Point(shape.position[:2]).buffer(math.sqrt(shape.radius ** 2 - d * d), quad_segs=CIRCLE_SEGMENTS)
+
+
+def mesh_section_segments(vertices, faces, z: float):
+    """The segments (K × 2 × 2, x/y) where a triangle mesh (world vertices) crosses the plane at height ``z``."""
+    import numpy as np
+
+    v, f = merged_mesh(vertices, faces)
+    if len(v) == 0 or len(f) == 0:
+        return np.zeros((0, 2, 2))
+    d = v[:, 2] - z
+    d[d == 0] = 1e-12            # a vertex exactly on the plane counts as just above it
+    above = d[f] > 0
+    f = f[above.any(axis=1) & ~above.all(axis=1)]
+    if len(f) == 0:
+        return np.zeros((0, 2, 2))
+    ring = np.roll(f, -1, axis=1)               # the three edges of each crossing triangle, each edge always
+    a, b = np.minimum(f, ring), np.maximum(f, ring)   # taken in the same direction so neighbours agree exactly
+    da, db = d[a], d[b]
+    crossing = (da > 0) != (db > 0)
+    t = np.where(crossing, da / np.where(crossing, da - db, 1.0), 0.0)
+    points = v[a][:, :, :2] + (v[b][:, :, :2] - v[a][:, :, :2]) * t[:, :, None]
+    order = np.argsort(~crossing, axis=1, kind="stable")[:, :2]   # the two crossing edges of each triangle
+    return np.take_along_axis(points, order[:, :, None], axis=1)
+
+
+def merged_mesh(vertices, faces):
+    """Vertices (rounded to 1 nm) made unique and faces renumbered, so that triangles sharing an edge share
+    its vertex indices even when the file repeated the vertices per triangle."""
+    import numpy as np
+
+    v = np.round(np.asarray(vertices, dtype=float).reshape(-1, 3), 9)
+    f = np.asarray(faces, dtype=np.int64).reshape(-1, 3)
+    if len(v) == 0:
+        return v, f
+    unique, index = np.unique(v, axis=0, return_inverse=True)
+    return unique, index.reshape(-1)[f]
+
+
+def _inside_by_parity(point, segments) -> bool:
+    """Even-odd rule against loose segments: works for closed sections even when the loops are not merged."""
+    x1, y1 = segments[:, 0, 0], segments[:, 0, 1]
+    x2, y2 = segments[:, 1, 0], segments[:, 1, 1]
+    px, py = point
+    straddle = (y1 > py) != (y2 > py)
+    with_y = (y2 - y1)
+    safe = with_y != 0
+    xs = x1 + (py - y1) * (x2 - x1) / (with_y + ~safe)
+    return bool((straddle & safe & (px < xs)).sum() % 2)
+
+
+def _mesh_section(shape: Shape, z: float):
+    """A mesh's section: the solid faces of the section (even-odd rule) plus every cut segment as a thin strip,
+    so that a mesh that is not closed still blocks where it has surface."""
+    import numpy as np
+    import shapely
+
+    if shape.vertices is None or shape.faces is None:
+        return None
+    world = _to_world(shape, shape.vertices)
+    if world[:, 2].min() > z or world[:, 2].max() < z:
+        return None
+    segments = mesh_section_segments(world, shape.faces, z)
+    if len(segments) == 0:
+        return None
+    lines = shapely.multilinestrings(segments)
+    strips = lines.buffer(SLIVER, quad_segs=1)
+    if not _closed_surface(shape.faces, shape.vertices):
+        return strips
+    noded = shapely.get_parts(shapely.union_all(lines))
+    faces = shapely.get_parts(shapely.polygonize(noded))
+    solid = [p for p in faces if p.area > 0 and _inside_by_parity(_probe(p), segments)]
+    return shapely.union_all([strips, *solid]) if solid else strips
+
+
+def _closed_surface(faces, vertices) -> bool:
+    """True when every edge of the mesh is shared by exactly two triangles (after merging repeated vertices),
+    so that its sections bound solid material; a loose sheet only blocks along its surface."""
+    import numpy as np
+
+    _, f = merged_mesh(vertices, faces)
+    edges = np.sort(np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]]), axis=1)
+    _, counts = np.unique(edges, axis=0, return_counts=True)
+    return bool(len(counts)) and bool((counts == 2).all())
+
+
+def _probe(polygon) -> tuple[float, float]:
+    p = polygon.representative_point()
+    return p.x, p.y
+
+
+def section(shape: Shape, z: float):
+    """The 2-D footprint (shapely geometry, world x/y) of ``shape`` cut by the plane at height ``z``, or None."""
+    if shape.kind == "box" and shape.size is not None:
+        return _convex_section(_to_world(shape, _box_corners(shape.size)), z)
+    if shape.kind == "cylinder" and shape.radius and shape.length:
+        return _cylinder_section(shape, z)
+    if shape.kind == "sphere" and shape.radius:
+        return _sphere_section(shape, z)
+    if shape.kind == "mesh":
+        return _mesh_section(shape, z)
+    return None   # ground planes and degenerate shapes
+
+
+def footprints(scene: Scene, z: float) -> list[Footprint]:
+    """Every shape of ``scene`` cut at height ``z``, in scene order (shapes the plane misses are left out)."""
+    out = []
+    for shape in scene.obstacles():
+        geometry = section(shape, z)
+        if geometry is not None and not geometry.is_empty:
+            out.append(Footprint(shape.label, geometry))
+    return out
+
+
+def footprints_between(scene: Scene, z0: float, z1: float, steps: int = 4) -> list[Footprint]:
+    """Footprints of everything between heights ``z0`` and ``z1``: sections at ``steps`` heights, united per
+    shape. Used for the robot's body, which spans a height range rather than a single plane."""
+    import shapely
+
+    heights = [z0 + (z1 - z0) * i / (steps - 1) for i in range(steps)]
+    out = []
+    for shape in scene.obstacles():
+        parts = [g for g in (section(shape, z) for z in heights) if g is not None and not g.is_empty]
+        if parts:
+            out.append(Footprint(shape.label, shapely.union_all(parts)))
+    return out
+
+
+def shape_top(shape: Shape) -> float | None:
+    """The highest point of a shape (world z), or None for planes and degenerate shapes."""
+    import numpy as np
+
+    if shape.kind == "box" and shape.size is not None:
+        return float(_to_world(shape, _box_corners(shape.size))[:, 2].max())
+    if shape.kind == "cylinder" and shape.radius and shape.length:
+        axis = rotation_matrix(shape.orientation)[:, 2]
+        return shape.position[2] + abs(axis[2]) * shape.length / 2 + math.sqrt(max(0.0, 1 - axis[2] ** 2)) * shape.radius
+    if shape.kind == "sphere" and shape.radius:
+        return shape.position[2] + shape.radius
+    if shape.kind == "mesh" and shape.vertices is not None and len(shape.vertices):
+        return float(_to_world(shape, np.asarray(shape.vertices, float))[:, 2].max())
+    return None
+
+
+def ground_under(scene: Scene, xy: tuple[float, float], max_step: float) -> tuple[float, str | None]:
+    """The floor height under ``xy``: the top of the highest shape no taller than ``max_step`` whose top face
+    lies under the point (a floor slab such as Gazebo's asphalt_plane), else 0; and that shape's label."""
+    import shapely
+
+    point = shapely.Point(xy)
+    best, label = 0.0, None
+    for shape in scene.obstacles():
+        top = shape_top(shape)
+        if top is None or not best < top <= max_step:
+            continue
+        cut = section(shape, top - 0.001)
+        if cut is not None and cut.covers(point):
+            best, label = top, shape.label
+    return best, label
+
+
+# ------------------------------------------------------------------------------------------------- enclosure
+
+def obstacle_union(prints: list[Footprint]):
+    """The footprints united and grown by :data:`SLIVER` (empty geometry when there are none)."""
+    import shapely
+
+    return shapely.union_all([p.geometry for p in prints]).buffer(SLIVER, quad_segs=2)
+
+
+def _frame(obstacles, spawn, margin: float):
+    import shapely
+
+    xs, ys = [spawn[0]], [spawn[1]]
+    if not obstacles.is_empty:
+        x0, y0, x1, y1 = obstacles.bounds
+        xs += [x0, x1]
+        ys += [y0, y1]
+    return shapely.box(min(xs) - margin, min(ys) - margin, max(xs) + margin, max(ys) + margin)
+
+
+def _components(geometry) -> list:
+    import shapely
+
+    return [p for p in shapely.get_parts(geometry) if p.geom_type == "Polygon" and p.area > 0]
+
+
+def _spawn_component(free, spawn):
+    """The component of ``free`` holding ``spawn`` (or, when the spawn sits right on its edge, the nearest)."""
+    import shapely
+
+    point = shapely.Point(spawn)
+    parts = _components(free)
+    if not parts:
+        return None
+    holding = [p for p in parts if p.covers(point)]
+    return holding[0] if holding else min(parts, key=point.distance)
+
+
+def _reaches_outside(component, frame) -> bool:
+    return component is not None and component.exterior.distance(frame.exterior) < 1e-9
+
+
+def _closing(obstacles, r: float):
+    return obstacles.buffer(r, quad_segs=8).buffer(-r, quad_segs=8)
+
+
+def _cut_off(obstacles, frame, spawn, r: float) -> bool:
+    """True when closing the obstacles with radius ``r`` separates the spawn from the outside."""
+    import shapely
+
+    closed = _closing(obstacles, r)
+    if closed.covers(shapely.Point(spawn)):
+        return True
+    return not _reaches_outside(_spawn_component(frame.difference(closed), spawn), frame)
+
+
+def _critical_radius(obstacles, frame, spawn, r_max: float) -> float | None:
+    """Smallest closing radius (to :data:`WIDTH_TOLERANCE`/2) that cuts the spawn off; None beyond ``r_max``."""
+    lo, hi = 0.0, 0.05
+    while not _cut_off(obstacles, frame, spawn, hi):
+        lo, hi = hi, hi * 2
+        if lo >= r_max:
+            return None
+        hi = min(hi, r_max)
+    while hi - lo > WIDTH_TOLERANCE / 2:
+        mid = (lo + hi) / 2
+        if _cut_off(obstacles, frame, spawn, mid):
+            hi = mid
+        else:
+            lo = mid
+    return hi
+
+
+def _line_parts(geometry) -> list:
+    import shapely
+
+    lines = [g for g in shapely.get_parts(geometry) if g.geom_type in ("LineString", "MultiLineString")]
+    if not lines:
+        return []
+    merged = shapely.line_merge(shapely.union_all(lines))
+    return [g for g in shapely.get_parts(merged) if g.length > 0]
+
+
+def _gaps_at(obstacles, frame, spawn, r: float, prints: list[Footprint]):
+    """The gaps closed by a closing of radius ``r``, and the pieces that plug them."""
+    import shapely
+
+    point = shapely.Point(spawn)
+    closed = _closing(obstacles, r)
+    free = frame.difference(closed)
+    outside = next((c for c in _components(free) if _reaches_outside(c, frame)), None)
+    if outside is None:
+        return [], []
+    region = None if closed.covers(point) else _spawn_component(free, spawn)
+    gaps, plugs = [], []
+    for piece in _components(closed.difference(obstacles)):
+        between = piece.covers(point) if region is None else piece.distance(region) < 1e-7
+        if not between or piece.distance(outside) > 1e-7:
+            continue
+        mouth = piece.boundary.intersection(outside.boundary.buffer(1e-7, quad_segs=1))
+        for line in _line_parts(mouth):
+            gaps.append(_gap_from_mouth(line, prints))
+        plugs.append(piece)
+    return gaps, plugs
+
+
+def _gap_from_mouth(line, prints: list[Footprint]) -> Gap:
+    import shapely
+
+    coords = list(line.coords)
+    a, b = coords[0], coords[-1]
+    chord = math.dist(a, b)
+    if chord > 1e-6:      # the ends sit on the walls either side; between them is the way out
+        centre, width = ((a[0] + b[0]) / 2, (a[1] + b[1]) / 2), chord
+    else:                 # a closed mouth (the gap runs all round): its middle and its length
+        mid = line.interpolate(0.5, normalized=True)
+        centre, width = (mid.x, mid.y), line.length
+    between = []
+    for end in (a, b):
+        p = shapely.Point(end)
+        near = min(prints, key=lambda f: f.geometry.distance(p), default=None)
+        if near is not None and near.label not in between and near.geometry.distance(p) < 0.01:
+            between.append(near.label)
+    return Gap(centre=centre, width=width, ends=(a[:2], b[:2]), between=tuple(between))
+
+
+def analyse(prints: list[Footprint], spawn: tuple[float, float], height: float) -> Enclosure:
+    """Decide whether ``spawn`` is enclosed by ``prints`` (footprints cut at ``height``) and find the gaps."""
+    import shapely
+
+    spawn = (float(spawn[0]), float(spawn[1]))
+    point = shapely.Point(spawn)
+    if not prints:
+        return Enclosure(spawn, height, enclosed=False, has_walls=False)
+    for p in prints:
+        if p.geometry.covers(point):
+            return Enclosure(spawn, height, enclosed=None, inside=p.label, nearest=0.0)
+    nearest = min(p.geometry.distance(point) for p in prints)
+    obstacles = obstacle_union(prints)
+    frame = _frame(obstacles, spawn, MARGIN + MAX_GAP)
+    region = _spawn_component(frame.difference(obstacles), spawn)
+    if not _reaches_outside(region, frame):
+        return Enclosure(spawn, height, enclosed=True, region_area=region.area,
+                         region_bounds=tuple(region.bounds), nearest=nearest)
+    rooms = _closed_regions(frame.difference(obstacles), frame, point)
+    gaps: list[Gap] = []
+    for _ in range(MAX_GAP_ROUNDS):
+        r = _critical_radius(obstacles, frame, spawn, MAX_GAP / 2)
+        if r is None:
+            break
+        found, plugs = _gaps_at(obstacles, frame, spawn, r, prints)
+        gaps += found
+        if not plugs or any(p.covers(point) for p in plugs):
+            break
+        obstacles = shapely.union_all([obstacles, *plugs])
+        if not _reaches_outside(_spawn_component(frame.difference(obstacles), spawn), frame):
+            break
+    gaps.sort(key=lambda g: -g.width)
+    return Enclosure(spawn, height, enclosed=False, gaps=tuple(gaps), nearest=nearest, rooms=rooms)
+
+
+ROOM_MIN_AREA = 0.25   # m²: closed pockets smaller than this (inside a pillar, between joined walls) are no rooms
+
+
+def _closed_regions(free, frame, point) -> tuple[tuple[float, float, float, float], ...]:
+    rooms = [c for c in _components(free) if not _reaches_outside(c, frame) and c.area >= ROOM_MIN_AREA]
+    rooms.sort(key=lambda c: (c.distance(point), c.bounds))
+    return tuple(tuple(round(v, 4) for v in c.bounds) for c in rooms)
+
+
+def enclosure(scene: Scene, spawn: tuple[float, float], height: float) -> Enclosure:
+    """:func:`analyse` of the scene cut at ``height``."""
+    return analyse(footprints(scene, height), spawn, height)

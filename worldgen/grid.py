@@ -1,0 +1,115 @@
+"""ASCII grids: a maze or floorplan typed as text becomes straight walls.
+
+Characters: ``#`` wall, ``.`` or space free floor, ``R`` the robot facing +x (or ``>`` ``^`` ``<`` ``v`` for a
+heading of 0, π/2, π, −π/2). Row 0 is the top line; the grid's bottom-left corner sits at ``origin`` (default
+(0, 0)), so the cell in row ``r`` and column ``c`` of an ``H``-row grid has its centre at
+``(ox + (c + ½)·cell, oy + (H − r − ½)·cell)``: the picture is the top-down view, +x to the right, +y up.
+
+Walls: each maximal horizontal run of two or more ``#`` becomes one wall along the row's centre, from the first
+to the last cell centre, one cell thick. A wall's box reaches half its thickness beyond its end points (the way
+corners close), so the box covers the run's cells exactly. Vertical runs likewise, except that a vertical run
+whose cells all lie in horizontal runs already (a block two or more cells thick) adds nothing and is dropped.
+A lone ``#`` (no ``#`` left, right, above or below it) has no run to belong to; it becomes a square post.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Sequence
+
+from .errors import SpecError
+
+Point = tuple[float, float]
+
+WALL = "#"
+FREE = frozenset(". ")
+ROBOT_HEADINGS = {"R": 0.0, ">": 0.0, "^": math.pi / 2, "<": math.pi, "v": -math.pi / 2}
+LEGEND = "use # for a wall, . or space for free floor, R or > ^ < v for the robot and its heading"
+
+
+@dataclass(frozen=True)
+class GridPlan:
+    """What a grid holds, in metres: wall centre-lines (start, end), lone-cell posts, the robot's pose."""
+
+    walls: tuple[tuple[Point, Point], ...]
+    posts: tuple[tuple[int, int, Point], ...]   # (row, column, centre) of each lone '#'
+    robot: tuple[Point, float] | None             # (x, y), yaw
+    rows: int
+    columns: int
+
+
+def plan_grid(rows: Sequence[str], cell: float, origin: Point = (0.0, 0.0), *, source: str | None = None,
+              row_lines: Sequence[int | None] | None = None) -> GridPlan:
+    """Turn grid rows (top row first) into walls, posts and the robot pose.
+
+    ``row_lines`` gives each row's line in ``source`` so that a bad character is reported where it is.
+    Raises SpecError for an unknown character, a second robot, or a grid without any wall.
+    """
+    def line_of(r: int) -> int | None:
+        return row_lines[r] if row_lines is not None and r < len(row_lines) else None
+
+    width = max((len(row) for row in rows), default=0)
+    grid = [row.ljust(width) for row in rows]
+    height = len(grid)
+    ox, oy = origin
+
+    def centre(r: int, c: int) -> Point:
+        return (round(ox + (c + 0.5) * cell, 9), round(oy + (height - r - 0.5) * cell, 9))
+
+    robot = None
+    for r, row in enumerate(grid):
+        for c, ch in enumerate(row):
+            if ch == WALL or ch in FREE:
+                continue
+            if ch in ROBOT_HEADINGS:
+                if robot is not None:
+                    raise SpecError(f"the grid places the robot twice (row {r + 1}, column {c + 1})",
+                                    path=source, line=line_of(r), hint="keep one R, >, ^, < or v in the grid")
+                robot = (centre(r, c), ROBOT_HEADINGS[ch])
+                continue
+            shown = "a tab" if ch == "\t" else repr(ch)
+            raise SpecError(f"the grid has {shown} in row {r + 1}, column {c + 1}",
+                            path=source, line=line_of(r), hint=LEGEND)
+
+    is_wall = [[ch == WALL for ch in row] for row in grid]
+    if not any(any(row) for row in is_wall):
+        raise SpecError("the grid has no walls", path=source, line=line_of(0), hint=LEGEND)
+
+    walls: list[tuple[Point, Point]] = []
+    in_row_run = [[False] * width for _ in range(height)]
+    for r in range(height):
+        for c0, c1 in _runs(is_wall[r]):
+            walls.append((centre(r, c0), centre(r, c1)))
+            for c in range(c0, c1 + 1):
+                in_row_run[r][c] = True
+    for c in range(width):
+        column = [is_wall[r][c] for r in range(height)]
+        for r0, r1 in _runs(column):
+            if not all(in_row_run[r][c] for r in range(r0, r1 + 1)):
+                walls.append((centre(r1, c), centre(r0, c)))   # bottom to top
+
+    posts = tuple((r, c, centre(r, c)) for r in range(height) for c in range(width)
+                  if is_wall[r][c] and not _has_wall_neighbour(is_wall, r, c))
+    return GridPlan(tuple(walls), posts, robot, height, width)
+
+
+def _runs(cells: Sequence[bool]) -> list[tuple[int, int]]:
+    """Index ranges (first, last) of the maximal runs of True at least two long."""
+    runs, start = [], None
+    for i, on in enumerate([*cells, False]):
+        if on and start is None:
+            start = i
+        elif not on and start is not None:
+            if i - start >= 2:
+                runs.append((start, i - 1))
+            start = None
+    return runs
+
+
+def _has_wall_neighbour(is_wall: list[list[bool]], r: int, c: int) -> bool:
+    for dr, dc in ((0, 1), (0, -1), (1, 0), (-1, 0)):
+        rr, cc = r + dr, c + dc
+        if 0 <= rr < len(is_wall) and 0 <= cc < len(is_wall[rr]) and is_wall[rr][cc]:
+            return True
+    return False

@@ -1,0 +1,198 @@
+"""Validation results and their three readings: a text table for people, JSON for programs, JUnit XML for CI.
+
+A :class:`Result` is one validated file: its spawn pose and where that came from, the checks that ran, their
+findings and the numbers they measured. Every writer here is deterministic (no times, no dates): the same results
+give the same bytes.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass, field
+
+from .findings import SEVERITIES, Finding
+
+CHECK_ORDER = ("parse", "launch", "package", "enclosed", "spawn-clear", "settle", "lidar", "spin", "stop-at-wall")
+
+
+@dataclass
+class Result:
+    """One validated file.
+
+    ``checks`` lists the checks that ran, in order; ``skipped`` maps a check that did not run to why.
+    A finding whose id is not a check's id (the world reader's own ids) belongs to ``parse``.
+    """
+
+    path: str
+    spawn: tuple[float, float, float] | None = None
+    spawn_source: str = ""
+    robot: str = "burger"
+    findings: list[Finding] = field(default_factory=list)
+    metrics: dict = field(default_factory=dict)
+    checks: list[str] = field(default_factory=list)
+    skipped: dict[str, str] = field(default_factory=dict)
+
+    @property
+    def ok(self) -> bool:
+        return not any(f.severity == "error" for f in self.findings)
+
+    def check_of(self, finding: Finding) -> str:
+        """The check a finding is reported under: its own id when that check ran, the check whose id prefixes
+        it (``launch-find`` → ``launch``), else ``parse`` (the world reader's ids)."""
+        if finding.check in self.checks:
+            return finding.check
+        head = finding.check.split("-", 1)[0]
+        return head if head in self.checks else "parse"
+
+    def sorted_findings(self) -> list[Finding]:
+        """Errors first, then warnings, then info; within a severity, in check order then as found."""
+        rank = {name: i for i, name in enumerate(CHECK_ORDER)}
+        indexed = list(enumerate(self.findings))
+        indexed.sort(key=lambda item: (SEVERITIES.index(item[1].severity),
+                                       rank.get(self.check_of(item[1]), len(rank)), item[0]))
+        return [f for _, f in indexed]
+
+    def to_dict(self) -> dict:
+        return {
+            "path": self.path,
+            "ok": self.ok,
+            "robot": self.robot,
+            "spawn": [round(v, 4) for v in self.spawn] if self.spawn else None,
+            "spawn_source": self.spawn_source,
+            "checks": list(self.checks),
+            "skipped": dict(self.skipped),
+            "findings": [f.to_dict() for f in self.sorted_findings()],
+            "metrics": _clean(self.metrics),
+        }
+
+
+def _clean(value):
+    """JSON-safe metrics: floats rounded to 4 decimals, non-finite floats as strings ("inf")."""
+    if isinstance(value, dict):
+        return {k: _clean(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_clean(v) for v in value]
+    if isinstance(value, float):
+        if math.isfinite(value):
+            return round(value, 4) + 0.0
+        return "inf" if value > 0 else ("-inf" if value < 0 else "nan")
+    return value
+
+
+# ------------------------------------------------------------------------------------------------------ JSON
+
+def to_json(results: list[Result]) -> str:
+    """``{"ok": bool, "results": [...]}``, indented, keys in a fixed order, ending with a newline."""
+    doc = {"ok": all(r.ok for r in results), "results": [r.to_dict() for r in results]}
+    return json.dumps(doc, indent=2, allow_nan=False) + "\n"
+
+
+# ------------------------------------------------------------------------------------------------------ text
+
+def _fmt_m(value, unit: str = " m", digits: int = 2) -> str:
+    if value is None:
+        return "–"
+    if isinstance(value, float) and not math.isfinite(value):
+        return "inf"
+    return f"{value:.{digits}f}{unit}"
+
+
+def _row(r: Result) -> list[str]:
+    m = r.metrics
+    enclosed = m.get("enclosed")
+    enclosed_text = {True: "yes", False: "NO", None: "–"}[enclosed] if "enclosed" in m else "–"
+    if m.get("spawn_inside"):
+        enclosed_text = "in wall"
+    verdict = "FAIL" if not r.ok else ("warn" if any(f.severity == "warning" for f in r.findings) else "ok")
+    beams = m.get("lidar_no_hit_beams")
+    drift = m.get("spin_drift_m")
+    return [
+        _short(r.path),
+        verdict,
+        enclosed_text,
+        _fmt_m(m.get("min_clearance_m")),
+        "–" if beams is None else f"{beams}/{m.get('lidar_beams', 360)}",
+        "–" if drift is None else f"{drift * 100:.1f} cm",
+        _fmt_m(m.get("stop_distance_m")),
+    ]
+
+
+FILE_COLUMN = 48   # longer paths are shortened from the left in the table (findings keep them whole)
+
+
+def _short(path: str) -> str:
+    return path if len(path) <= FILE_COLUMN else "…" + path[-(FILE_COLUMN - 1):]
+
+
+HEADER = ["file", "verdict", "enclosed", "clearance", "no-hit", "spin drift", "stopped at"]
+
+
+def to_text(results: list[Result]) -> str:
+    """A table with one row per file, each followed by its spawn line and its findings (errors first)."""
+    rows = [HEADER] + [_row(r) for r in results]
+    widths = [max(len(row[i]) for row in rows) for i in range(len(HEADER))]
+    lines = ["  ".join(cell.ljust(w) for cell, w in zip(HEADER, widths)).rstrip()]
+    for r, row in zip(results, rows[1:]):
+        lines.append("  ".join(cell.ljust(w) for cell, w in zip(row, widths)).rstrip())
+        if r.spawn:
+            x, y, yaw = r.spawn
+            lines.append(f"    {r.robot} spawn ({x:g}, {y:g}, {yaw:g}) {r.spawn_source}".rstrip())
+        for f in r.sorted_findings():
+            lines.append(f"    {f.severity:<7} {f.check}: {f.message}")
+            if f.where:
+                lines.append(f"            where: {f.where}")
+            if f.fix:
+                lines.append(f"            fix: {f.fix}")
+    failed = sum(not r.ok for r in results)
+    lines.append(f"{len(results)} file(s): {len(results) - failed} passed, {failed} failed")
+    return "\n".join(lines) + "\n"
+
+
+# ----------------------------------------------------------------------------------------------------- JUnit
+
+def to_junit(results: list[Result]) -> bytes:
+    """One ``<testsuite>`` with a ``<testcase classname=FILE name=CHECK>`` per file and check; errors are
+    ``<failure>`` elements, warnings and notes go to ``<system-out>``, checks that did not run are ``<skipped>``."""
+    from lxml import etree
+
+    suites = etree.Element("testsuites")
+    suite = etree.SubElement(suites, "testsuite", name="worldgen validate")
+    tests = failures = skipped = 0
+    for r in results:
+        by_check: dict[str, list[Finding]] = {c: [] for c in ("parse", *r.checks)}
+        for f in r.findings:
+            by_check[r.check_of(f)].append(f)
+        if "parse" not in r.checks and not by_check["parse"]:
+            del by_check["parse"]
+        for check, found in by_check.items():
+            case = etree.SubElement(suite, "testcase", classname=r.path, name=check)
+            tests += 1
+            errors = [f for f in found if f.severity == "error"]
+            if errors:
+                failures += 1
+                failure = etree.SubElement(case, "failure", message=errors[0].message, type=check)
+                failure.text = "\n".join(_finding_line(f) for f in errors)
+            others = [f for f in found if f.severity != "error"]
+            if others:
+                etree.SubElement(case, "system-out").text = "\n".join(_finding_line(f) for f in others)
+        for check, why in r.skipped.items():
+            case = etree.SubElement(suite, "testcase", classname=r.path, name=check)
+            etree.SubElement(case, "skipped", message=why)
+            tests += 1
+            skipped += 1
+    for element in (suites, suite):
+        element.set("tests", str(tests))
+        element.set("failures", str(failures))
+        element.set("errors", "0")
+        element.set("skipped", str(skipped))
+    return etree.tostring(suites, pretty_print=True, xml_declaration=True, encoding="UTF-8")
+
+
+def _finding_line(f: Finding) -> str:
+    text = f"{f.severity}: {f.message}"
+    if f.where:
+        text += f" [where: {f.where}]"
+    if f.fix:
+        text += f" [fix: {f.fix}]"
+    return text

@@ -1,0 +1,164 @@
+"""Robot descriptions: a TurtleBot3 model name or a user's ``.urdf.xacro``/``.urdf`` file → URDF text.
+
+Our own TurtleBot3 descriptions live in the ROS package folder ``worldgen_turtlebot3`` (see
+:func:`worldgen.resources.robots_dir`). xacro (PyPI) resolves ``$(find pkg)`` through ament only, so while a file
+is processed its resolver is swapped for one that walks ``ROS_PACKAGE_PATH`` (and our robots folder) for a
+``package.xml`` with that ``<name>`` — which is how ROS 1 finds packages, so the real ``turtlebot3_description``
+works too when it is on the path. :func:`absolute_mesh_paths` turns ``package://`` URIs into file paths, since
+pybullet only looks beside the URDF file for them.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import threading
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+from ..errors import InputError
+from ..resources import robots_dir
+
+MODELS = ("burger", "waffle", "waffle_pi")
+_XACRO_LOCK = threading.Lock()  # xacro keeps its state in module globals
+
+
+class PackageNotFound(LookupError):
+    """``$(find pkg)`` named a package that no folder on the search path holds."""
+
+    def __init__(self, name: str):
+        super().__init__(name)
+        self.name = name
+
+
+def package_search_path() -> list[Path]:
+    """Folders searched for ROS packages: ``ROS_PACKAGE_PATH`` (in order), then worldgen's robots folder."""
+    entries = [Path(p) for p in os.environ.get("ROS_PACKAGE_PATH", "").split(os.pathsep) if p]
+    return entries + [robots_dir().parent]
+
+
+def _package_name(manifest: Path) -> str | None:
+    try:
+        name = ET.parse(manifest).getroot().findtext("name")
+    except (ET.ParseError, OSError):
+        return None
+    return name.strip() if name else None
+
+
+def find_package(name: str) -> Path:
+    """The folder of ROS package ``name``: the first folder under the search path whose ``package.xml`` says
+    ``<name>name</name>``. ``ROOT/name`` is tried first; otherwise folders are walked top-down in sorted order,
+    not descending into packages (as rospack does). Raises :class:`PackageNotFound`."""
+    roots = tuple(package_search_path())
+    key = (roots, name)
+    if key not in _FOUND:
+        _FOUND[key] = _search(roots, name)
+    return _FOUND[key]
+
+
+_FOUND: dict[tuple[tuple[Path, ...], str], Path] = {}
+
+
+def _search(roots: tuple[Path, ...], name: str) -> Path:
+    for root in roots:
+        for guess in (root, root / name):
+            if _package_name(guess / "package.xml") == name:
+                return guess
+    for root in roots:
+        if not root.is_dir():
+            continue
+        for dirpath, dirnames, filenames in os.walk(root):
+            if "package.xml" in filenames:
+                if _package_name(Path(dirpath) / "package.xml") == name:
+                    return Path(dirpath)
+                dirnames.clear()  # a package does not hold other packages
+            dirnames[:] = sorted(d for d in dirnames if not d.startswith("."))
+    raise PackageNotFound(name)
+
+
+def robot_file(robot: str | Path) -> Path:
+    """A model name (``burger``, ``waffle``, ``waffle_pi``) → our xacro file; anything else is a path that must
+    exist and end in ``.xacro`` or ``.urdf``."""
+    text = str(robot)
+    if text in MODELS:
+        return robots_dir() / "urdf" / f"turtlebot3_{text}.urdf.xacro"
+    path = Path(text).expanduser()
+    if not (text.endswith((".xacro", ".urdf")) or os.sep in text):
+        raise InputError(f"unknown robot {text!r}",
+                         hint=f"use one of {', '.join(MODELS)} or the path of a .urdf or .urdf.xacro file")
+    if not path.is_file():
+        raise InputError("robot description not found", path=path,
+                         hint=f"give an existing .urdf or .urdf.xacro file, or one of {', '.join(MODELS)}")
+    return path.resolve()
+
+
+def robot_urdf(robot: str | Path = "burger", mappings: dict[str, str] | None = None) -> str:
+    """The URDF text of ``robot`` (a model name or a file path).
+
+    ``.urdf`` files are returned as they are; anything else goes through ``xacro.process_file`` with
+    ``mappings`` as its ``name:=value`` arguments and ``$(find pkg)`` resolved by :func:`find_package`.
+    Errors (missing file or package, xacro or XML errors) become :class:`InputError` naming the file.
+    """
+    path = robot_file(robot)
+    if path.suffix == ".urdf":
+        try:
+            text = path.read_text(encoding="utf-8")
+            ET.fromstring(text)
+        except (OSError, UnicodeDecodeError, ET.ParseError) as err:
+            raise InputError(f"cannot read the robot description: {err}", path=path,
+                             hint="fix the URDF file (it must be well-formed XML)") from None
+        return text
+    return _process_xacro(path, dict(mappings or {}))
+
+
+def _process_xacro(path: Path, mappings: dict[str, str]) -> str:
+    import xml.parsers.expat
+
+    import xacro
+    import xacro.substitution_args as sa
+
+    def resolve(pkg: str) -> str:
+        return str(find_package(pkg))
+
+    with _XACRO_LOCK:
+        saved = sa._eval_find, sa._eval_dict["find"]
+        sa._eval_find = sa._eval_dict["find"] = resolve
+        try:
+            doc = xacro.process_file(str(path), mappings=mappings)
+        except xacro.XacroException as err:
+            raise _xacro_error(path, err) from None
+        except (xml.parsers.expat.ExpatError, OSError) as err:
+            raise InputError(f"xacro cannot read the robot description: {err}", path=path,
+                             hint="fix the file (it must be well-formed XML)") from None
+        finally:
+            sa._eval_find, sa._eval_dict["find"] = saved
+    return doc.toprettyxml(indent="  ")
+
+
+def _xacro_error(path: Path, err: Exception) -> InputError:
+    cause = getattr(err, "exc", None)
+    if isinstance(cause, PackageNotFound):
+        searched = os.pathsep.join(str(p) for p in package_search_path())
+        return InputError(f"xacro: $(find {cause.name}): no package named {cause.name!r}", path=path,
+                          hint=f"add the folder holding it to ROS_PACKAGE_PATH (searched: {searched})")
+    where = getattr(err, "filename", None)
+    return InputError(f"xacro failed: {err}", path=where or path,
+                      hint="fix the xacro file or pass its arguments (name:=value) as mappings")
+
+
+_PACKAGE_URI = re.compile(r"package://([^/\"'<>\s]+)/")
+
+
+def absolute_mesh_paths(urdf: str, source: str | Path | None = None) -> str:
+    """``urdf`` with every ``package://pkg/rest`` URI replaced by the absolute path of ``rest`` in package
+    ``pkg`` and ``file://`` prefixes dropped, so pybullet finds the files wherever the URDF is written.
+    An unknown package is an :class:`InputError` (naming ``source``)."""
+    def replace(match: re.Match) -> str:
+        try:
+            return str(find_package(match.group(1))) + "/"
+        except PackageNotFound:
+            raise InputError(f"mesh path {match.group(0)}… names a package that is not on ROS_PACKAGE_PATH",
+                             path=source, hint=f"add the folder holding {match.group(1)} to ROS_PACKAGE_PATH"
+                             ) from None
+
+    return _PACKAGE_URI.sub(replace, urdf).replace("file://", "")

@@ -1,0 +1,61 @@
+"""Mesh files (.dae, .stl, .obj, …) loaded as plain vertex and face arrays, sized the way Gazebo sizes them.
+
+Gazebo scales a Collada mesh by its ``<unit meter=…>`` and then by the SDF ``<scale>``; it ignores ``<up_axis>``
+(the TurtleBot3 world's walls say Y_UP and stand upright). trimesh keeps the unit only as metadata, so the unit is
+read here. trimesh is imported on first use: most worlds have no meshes and ``worldgen build`` must stay fast.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import numpy as np
+
+_UNIT = re.compile(rb"<unit\b[^>]*\bmeter\s*=\s*[\"']([^\"']+)[\"']")
+
+
+def collada_unit(path: Path) -> float:
+    """The ``<unit meter=…>`` of a Collada file's asset block (1.0 when absent or unreadable)."""
+    with open(path, "rb") as handle:
+        head = handle.read(8192)
+    match = _UNIT.search(head)
+    try:
+        unit = float(match.group(1)) if match else 1.0
+    except ValueError:
+        return 1.0
+    return unit if unit > 0 else 1.0
+
+
+class MeshCache:
+    """Loads each (file, scale) once per read; returns read-only ``(vertices, faces)`` arrays or raises
+    ``ValueError`` saying why the mesh cannot be used."""
+
+    def __init__(self) -> None:
+        self._cache: dict[tuple[str, tuple[float, float, float]], tuple[np.ndarray, np.ndarray] | str] = {}
+
+    def load(self, path: Path, scale: tuple[float, float, float]) -> tuple[np.ndarray, np.ndarray]:
+        key = (str(path), tuple(scale))
+        if key not in self._cache:
+            self._cache[key] = self._load(path, scale)
+        found = self._cache[key]
+        if isinstance(found, str):
+            raise ValueError(found)
+        return found
+
+    @staticmethod
+    def _load(path: Path, scale) -> tuple[np.ndarray, np.ndarray] | str:
+        import trimesh  # lazy: heavy import, needed only for worlds with meshes
+
+        try:
+            mesh = trimesh.load(str(path), force="mesh")
+        except Exception as err:  # trimesh raises many types for bad files; all mean "cannot use this mesh"
+            return f"cannot be loaded ({type(err).__name__}: {err})"
+        if not isinstance(mesh, trimesh.Trimesh) or len(mesh.faces) == 0:
+            return "holds no triangles"
+        unit = collada_unit(path) if path.suffix.lower() == ".dae" else 1.0
+        vertices = np.asarray(mesh.vertices, dtype=float) * unit * np.asarray(scale, dtype=float)
+        faces = np.asarray(mesh.faces, dtype=np.int64)
+        for array in (vertices, faces):
+            array.setflags(write=False)  # shared by every shape that uses this file and scale
+        return vertices, faces

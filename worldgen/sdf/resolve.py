@@ -1,0 +1,215 @@
+"""Where ``model://``, ``package://``, ``file://`` and plain paths in a world point to, the way Gazebo looks them up.
+
+Search order for ``model://NAME/...``: the explicit model paths (``--model-path``), then ``GAZEBO_MODEL_PATH``,
+then ``SDF_PATH`` (both colon-separated lists of folders holding ``NAME/model.config``), then the
+``<gazebo_ros gazebo_model_path="${prefix}/models"/>`` exports of catkin packages on ``ROS_PACKAGE_PATH`` and of
+the catkin package that holds the world file itself, and finally a catkin package called NAME
+(``model://pkg/meshes/x.dae``).
+Nothing is ever fetched from the network.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+from pathlib import Path
+
+from lxml import etree
+
+_SAFE_PARSER = dict(resolve_entities=False, no_network=True, load_dtd=False, remove_comments=True)
+STOCK_MODELS = ("ground_plane", "sun")  # Gazebo's own models, stood in for when no model path has them
+
+
+@dataclass(frozen=True)
+class Resolved:
+    """The outcome of resolving a URI: ``path`` when found, else ``None`` and ``reason`` (what was tried)."""
+
+    uri: str
+    path: Path | None
+    reason: str = ""
+    remote: bool = False
+
+    @property
+    def model_name(self) -> str:
+        """The model a URI names (``model://NAME/...``, the last part of a Fuel URL), lower-cased with ``_``."""
+        text = self.uri.rstrip("/")
+        if text.startswith("model://") and not text.startswith("model:///"):
+            text = text[len("model://"):].split("/")[0]
+        else:
+            text = text.rsplit("/", 1)[-1]
+        return text.strip().lower().replace(" ", "_")
+
+
+def _split_paths(value: str | None) -> list[Path]:
+    return [Path(p) for p in (value or "").split(os.pathsep) if p.strip()]
+
+
+def _package_info(package_xml: Path) -> tuple[str, list[Path]]:
+    """A catkin package's name and its exported Gazebo model paths (``${prefix}`` = the package folder)."""
+    folder = package_xml.parent
+    try:
+        root = etree.parse(str(package_xml), etree.XMLParser(**_SAFE_PARSER)).getroot()
+    except (etree.XMLSyntaxError, OSError):
+        return folder.name, []
+    name = (root.findtext("name") or folder.name).strip()
+    exported: list[Path] = []
+    for export in root.iterfind("export/gazebo_ros"):
+        for part in (export.get("gazebo_model_path") or "").split(os.pathsep):
+            part = part.strip().replace("${prefix}", str(folder))
+            if part:
+                exported.append(Path(part))
+    return name, exported
+
+
+def _crawl_packages(root: Path) -> list[Path]:
+    """``package.xml`` files under ``root`` the way catkin finds them (no descent into a package or CATKIN_IGNORE)."""
+    found: list[Path] = []
+    if not root.is_dir():
+        return found
+    for folder, dirs, files in os.walk(root, followlinks=True):
+        if "CATKIN_IGNORE" in files:
+            dirs[:] = []
+            continue
+        if "package.xml" in files:
+            found.append(Path(folder) / "package.xml")
+            dirs[:] = []
+            continue
+        dirs[:] = sorted(d for d in dirs if not d.startswith("."))
+    return found
+
+
+def model_sdf_file(model_dir: Path) -> tuple[Path | None, str]:
+    """The SDF file of a model folder: the highest-version ``<sdf>`` entry of ``model.config``, else ``model.sdf``.
+
+    Returns the file (or None) and a note when something was odd (no model.config, a named file missing).
+    """
+    config = model_dir / "model.config"
+    if config.is_file():
+        try:
+            root = etree.parse(str(config), etree.XMLParser(**_SAFE_PARSER)).getroot()
+            entries = [(e.get("version") or "0", (e.text or "").strip()) for e in root.iterfind("sdf")]
+        except (etree.XMLSyntaxError, OSError) as err:
+            entries, note = [], f"{config} cannot be read ({err}); used model.sdf"
+        else:
+            note = ""
+        entries = [e for e in entries if e[1]]
+        entries.sort(key=lambda e: _version_key(e[0]), reverse=True)
+        for _, name in entries:
+            if (model_dir / name).is_file():
+                return model_dir / name, note
+        if entries:
+            note = f"{config} names {entries[0][1]}, which does not exist"
+    else:
+        note = f"{model_dir} has no model.config (Gazebo needs one to find the model)"
+    fallback = model_dir / "model.sdf"
+    return (fallback if fallback.is_file() else None), note
+
+
+def _version_key(text: str) -> tuple[int, ...]:
+    try:
+        return tuple(int(p) for p in text.split("."))
+    except ValueError:
+        return (0,)
+
+
+class Resolver:
+    """Looks up model folders and resource files for one read. Package crawling happens at most once, lazily."""
+
+    def __init__(self, model_paths=(), *, env=None, world_file: Path | None = None):
+        env = os.environ if env is None else env
+        self.search = [Path(p) for p in model_paths]
+        self.search += _split_paths(env.get("GAZEBO_MODEL_PATH")) + _split_paths(env.get("SDF_PATH"))
+        self._ros_roots = _split_paths(env.get("ROS_PACKAGE_PATH"))
+        self._world_file = world_file
+        self._packages: dict[str, Path] | None = None
+        self._exported: list[Path] = []
+
+    def _load_packages(self) -> None:
+        if self._packages is not None:
+            return
+        self._packages = {}
+        package_xmls = [x for root in self._ros_roots for x in _crawl_packages(root)]
+        own = self._enclosing_package()
+        if own is not None:
+            package_xmls.append(own)
+        for package_xml in package_xmls:
+            name, exported = _package_info(package_xml)
+            self._packages.setdefault(name, package_xml.parent)
+            self._exported += [p for p in exported if p not in self._exported]
+
+    def _enclosing_package(self) -> Path | None:
+        """The package.xml of the catkin package holding the world file (a world in ``pkg/worlds/``)."""
+        if self._world_file is None:
+            return None
+        for folder in list(Path(self._world_file).resolve().parents)[:4]:
+            if (folder / "package.xml").is_file():
+                return folder / "package.xml"
+        return None
+
+    def model_dirs(self) -> list[Path]:
+        """Every folder searched for ``model://NAME``, in order."""
+        self._load_packages()
+        return self.search + self._exported
+
+    def package_dir(self, name: str) -> Path | None:
+        self._load_packages()
+        assert self._packages is not None
+        return self._packages.get(name)
+
+    def _lookup(self, name: str, rest: str, want_dir: bool) -> Path | None:
+        """``NAME/rest`` under the search folders (then the env-less package fallbacks)."""
+        def ok(p: Path) -> bool:
+            return p.is_dir() if want_dir else p.is_file()
+
+        for base in self.search:  # cheap first: no crawling when the explicit paths have it
+            if ok(base / name / rest):
+                return base / name / rest
+        for base in self.model_dirs()[len(self.search):]:
+            if ok(base / name / rest):
+                return base / name / rest
+        package = self.package_dir(name)
+        if package is not None and ok(package / rest):
+            return package / rest
+        return None
+
+    def where_searched(self) -> str:
+        dirs = self.model_dirs()
+        return ", ".join(str(d) for d in dirs) if dirs else "no model path is set"
+
+    def resolve(self, uri: str, base_dir: Path, *, want_dir: bool) -> Resolved:
+        """Resolve a URI to a model folder (``want_dir``) or a file, relative paths against ``base_dir``."""
+        text = uri.strip()
+        if text.startswith(("http://", "https://")):
+            return Resolved(text, None, "online models are never fetched", remote=True)
+        if text.startswith("model:///"):
+            path = Path(text[len("model://"):])
+            return self._exists(text, path, want_dir)
+        for scheme in ("model://", "package://"):
+            if text.startswith(scheme):
+                name, _, rest = text[len(scheme):].partition("/")
+                if not name:
+                    return Resolved(text, None, "the URI names no model")
+                if scheme == "package://":
+                    package = self.package_dir(name)
+                    if package is not None and self._ok(package / rest, want_dir):
+                        return Resolved(text, package / rest)
+                found = self._lookup(name, rest, want_dir)
+                if found is not None:
+                    return Resolved(text, found)
+                return Resolved(text, None, f"no folder '{name}' with '{rest or 'model.config'}' in the model "
+                                            f"path ({self.where_searched()})")
+        if text.startswith("file://"):
+            text = text[len("file://"):]
+        path = Path(text).expanduser()
+        if not path.is_absolute():
+            path = base_dir / path
+        return self._exists(uri.strip(), path, want_dir)
+
+    @staticmethod
+    def _ok(path: Path, want_dir: bool) -> bool:
+        return path.is_dir() if want_dir else path.is_file()
+
+    def _exists(self, uri: str, path: Path, want_dir: bool) -> Resolved:
+        if self._ok(path, want_dir) or (want_dir and path.is_file() and path.suffix in (".sdf", ".world")):
+            return Resolved(uri, path)
+        return Resolved(uri, None, f"{path} does not exist")

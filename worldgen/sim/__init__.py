@@ -1,0 +1,3 @@
+"""pybullet simulation of a TurtleBot3 in a world: session, LiDAR, diff drive, behaviours, isolated runs.
+
+Importing this package imports nothing heavy; :mod:`.process` runs sessions in a child process."""

@@ -1,0 +1,177 @@
+"""The class's exercises, run on a :class:`~worldgen.sim.session.Session`: stand still, spin in place, and the
+sensory-motor loop "stop at a wall" with P/PI/PID gains. Each returns a plain result object (``to_dict`` for
+JSON) with the numbers a check or a student looks at.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from .lidar import front_distance
+from .session import Session
+
+UPRIGHT_TILT = math.radians(10)   # roll or pitch beyond this: the robot fell over or is stuck on something
+STOPPED_SPEED = 0.02              # m/s: slower than this through the last second counts as stopped
+
+
+@dataclass
+class SettleResult:
+    upright: bool
+    roll: float
+    pitch: float
+    z: float             # base frame height above the ground plane z = 0
+    drift: float         # how far the base frame slid while standing
+    contacts: list[dict]
+
+    def to_dict(self) -> dict:
+        return dict(self.__dict__)
+
+
+def settle(session: Session, seconds: float = 1.0) -> SettleResult:
+    """Stand still for ``seconds`` (zero command) and say whether the robot rests upright on the ground."""
+    start = session.odometry()
+    session.cmd_vel(0.0, 0.0)
+    session.reset_touches()
+    session.run(seconds)
+    end = session.odometry()
+    return SettleResult(upright=abs(end.roll) < UPRIGHT_TILT and abs(end.pitch) < UPRIGHT_TILT,
+                        roll=end.roll, pitch=end.pitch, z=end.z,
+                        drift=math.hypot(end.x - start.x, end.y - start.y), contacts=session.touches.to_list())
+
+
+@dataclass
+class SpinResult:
+    omega: float
+    seconds: float
+    turned: float        # yaw turned in total (rad, unwrapped)
+    drift: float         # final distance of the base frame from where it started
+    max_drift: float
+    drift_limit: float   # the most max_drift may be for the run to count as spinning in place
+    contacts: list[dict]
+    series: dict[str, list[float]] = field(default_factory=dict)   # t, x, y, yaw, drift
+
+    @property
+    def ok(self) -> bool:
+        return self.max_drift <= self.drift_limit and not self.contacts
+
+    def to_dict(self) -> dict:
+        return {**self.__dict__, "ok": self.ok}
+
+
+def spin(session: Session, seconds: float = 2 * math.pi, omega: float = 1.0, sample_rate: float = 30.0,
+         drift_limit: float = 0.05) -> SpinResult:
+    """Turn in place at ``omega`` rad/s for ``seconds``, then command a stop and let it come to rest
+    (0.5 s). A diff-drive robot turns about the midpoint of its wheels, so the base frame should stay put."""
+    start = session.odometry()
+    session.reset_touches()
+    series: dict[str, list[float]] = {"t": [], "x": [], "y": [], "yaw": [], "drift": []}
+    turned, last_yaw, max_drift = 0.0, start.yaw, 0.0
+    session.cmd_vel(0.0, omega)
+    period = 1.0 / sample_rate
+    steps = max(1, round(seconds / period))
+    for i in range(steps + round(0.5 / period)):
+        if i == steps:
+            session.cmd_vel(0.0, 0.0)
+        session.run(period)
+        o = session.odometry()
+        turned += math.remainder(o.yaw - last_yaw, math.tau)
+        last_yaw = o.yaw
+        drift = math.hypot(o.x - start.x, o.y - start.y)
+        max_drift = max(max_drift, drift)
+        for key, value in (("t", o.t - start.t), ("x", o.x), ("y", o.y), ("yaw", o.yaw), ("drift", drift)):
+            series[key].append(value)
+    return SpinResult(omega=omega, seconds=seconds, turned=turned, drift=series["drift"][-1], max_drift=max_drift,
+                      drift_limit=drift_limit, contacts=session.touches.to_list(), series=series)
+
+
+@dataclass
+class StopAtWallResult:
+    """One run of the stop-at-wall loop. Distances are the LiDAR's front distance from ``base_scan``; the
+    ``true`` series is the exact one (no noise, no quantisation), ``measured`` what the controller saw."""
+
+    target: float
+    kp: float
+    ki: float
+    kd: float
+    final_distance: float | None      # true front distance at the end
+    min_distance: float | None        # closest true approach
+    overshoot: float                  # how far the closest approach went below the target (≥ 0)
+    steady_state_error: float | None  # final − target
+    settling_time: float | None       # from the start until the distance stays within ±band of its final value
+    band: float
+    stopped: bool                     # |v| < STOPPED_SPEED over the last second
+    within_tolerance: bool            # |final − target| ≤ tolerance
+    tolerance: float
+    contacts: list[dict]
+    series: dict[str, list] = field(default_factory=dict)   # t, measured, true, v_cmd, v
+
+    @property
+    def ok(self) -> bool:
+        return self.stopped and self.within_tolerance and not self.contacts
+
+    def to_dict(self) -> dict:
+        return {**self.__dict__, "ok": self.ok}
+
+
+def stop_at_wall(session: Session, target: float = 0.5, kp: float = 0.5, ki: float = 0.0, kd: float = 0.0,
+                 duration: float = 15.0, max_speed: float = 0.22, rate: float = 5.0,
+                 half_angle: float = math.radians(10), band: float = 0.02, tolerance: float = 0.05,
+                 ) -> StopAtWallResult:
+    """Drive toward whatever is ahead and stop ``target`` m from it, as a student's node does: at ``rate`` Hz
+    (the LiDAR's 5 Hz, or 30) read the front distance d (nearest beam within ±``half_angle``; when every beam
+    there reads no hit, d is the range maximum), and command
+    ``v = clamp(kp·e + ki·∫e dt + kd·de/dt, ±max_speed)`` with ``e = d − target`` (a plain PID: the integral
+    is not limited, so a large ``ki`` winds up and overshoots, as on a real robot)."""
+    if session.lidar is None:
+        session.scan()   # raises the "no LiDAR" error
+    period = 1.0 / rate
+    start_t = session.t
+    session.reset_touches()
+    series: dict[str, list] = {"t": [], "measured": [], "true": [], "v_cmd": [], "v": []}
+    integral, last_error = 0.0, None
+    for _ in range(max(1, round(duration / period))):
+        scan = session.scan()
+        measured = front_distance(scan, half_angle)
+        true = front_distance(scan, half_angle, true=True)
+        d = measured if measured is not None else session.lidar.range_max
+        error = d - target
+        integral += error * period
+        derivative = 0.0 if last_error is None else (error - last_error) / period
+        last_error = error
+        v_cmd = max(-max_speed, min(max_speed, kp * error + ki * integral + kd * derivative))
+        odom = session.odometry()
+        for key, value in (("t", session.t - start_t), ("measured", measured), ("true", true), ("v_cmd", v_cmd),
+                           ("v", odom.v)):
+            series[key].append(value)
+        session.cmd_vel(v_cmd, 0.0)
+        session.run(period)
+    scan = session.scan()   # the state at the end; the last command still holds
+    final = front_distance(scan, half_angle, true=True)
+    for key, value in (("t", session.t - start_t), ("measured", front_distance(scan, half_angle)),
+                       ("true", final), ("v_cmd", session.drive.command[0]), ("v", session.odometry().v)):
+        series[key].append(value)
+    trues = [d for d in series["true"] if d is not None]
+    nearest = min(trues) if trues else None
+    last_second = series["v"][-(round(rate) + 1):]
+    return StopAtWallResult(
+        target=target, kp=kp, ki=ki, kd=kd, final_distance=final, min_distance=nearest,
+        overshoot=max(0.0, target - nearest) if nearest is not None else 0.0,
+        steady_state_error=final - target if final is not None else None,
+        settling_time=_settling_time(series["t"], series["true"], final, band) if final is not None else None,
+        band=band, stopped=all(abs(v) < STOPPED_SPEED for v in last_second),
+        within_tolerance=final is not None and abs(final - target) <= tolerance, tolerance=tolerance,
+        contacts=session.touches.to_list(), series=series)
+
+
+def _settling_time(times: list[float], values: list, final: float, band: float) -> float | None:
+    """The first time after which every value stays within ``final ± band`` (the control-textbook settling
+    time: measured against the value the response settles at, so a P controller's offset does not hide it)."""
+    settled = None
+    for t, d in zip(times, values):
+        inside = d is not None and abs(d - final) <= band
+        if not inside:
+            settled = None
+        elif settled is None:
+            settled = t
+    return settled

@@ -1,0 +1,103 @@
+"""A planar LiDAR like Gazebo's ray sensor (TurtleBot3's LDS-01: 360 beams, 0.12–3.5 m, 5 Hz).
+
+Beam i points at ``min_angle + i·(max_angle − min_angle)/(samples − 1)`` counter-clockwise from the sensor's +x,
+as Gazebo spaces them (so with 0…6.28319 the first and last beams overlap). Rays start at ``range_min`` as
+Gazebo's do, so the robot's own housing is never seen, and they skip the robot's bodies altogether. A range is
+the true distance plus optional Gaussian noise, quantised to the range resolution and clipped to the range;
+beams that hit nothing read ``inf`` (Gazebo) or ``0.0`` (the real robot's driver), by option.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import pybullet as pb
+
+from ..robots.profile import LidarParams
+from .scene_loader import SCENE_GROUP
+
+NO_HIT = {"inf": math.inf, "zero": 0.0}
+
+
+@dataclass
+class Scan:
+    """One revolution, shaped like sensor_msgs/LaserScan plus what a picture or a check needs.
+
+    ``ranges`` are what the sensor reports (noise, quantisation, no-hit value); ``true_ranges`` are the exact
+    distances (``inf`` for no hit); ``points`` are the world (x, y, z) of each hit (None for no hit);
+    ``origin`` is the sensor's world (x, y, z, yaw); ``time`` the simulated time of the scan.
+    """
+
+    angle_min: float
+    angle_max: float
+    angle_increment: float
+    range_min: float
+    range_max: float
+    ranges: list[float]
+    true_ranges: list[float]
+    points: list[tuple[float, float, float] | None]
+    origin: tuple[float, float, float, float]
+    time: float = 0.0
+    frame_id: str = "base_scan"
+
+    @property
+    def angles(self) -> list[float]:
+        return [self.angle_min + i * self.angle_increment for i in range(len(self.ranges))]
+
+    def to_dict(self) -> dict:
+        return {"angle_min": self.angle_min, "angle_max": self.angle_max, "angle_increment": self.angle_increment,
+                "range_min": self.range_min, "range_max": self.range_max, "ranges": list(self.ranges),
+                "frame_id": self.frame_id, "time": self.time, "origin": list(self.origin),
+                "points": [list(p) if p is not None else None for p in self.points]}
+
+
+def beam_directions(params: LidarParams) -> np.ndarray:
+    """Unit vectors (samples × 3) of the beams in the sensor frame."""
+    angles = params.min_angle + np.arange(params.samples) * params.angle_increment
+    return np.stack([np.cos(angles), np.sin(angles), np.zeros_like(angles)], axis=1)
+
+
+def cast_scan(client: int, params: LidarParams, position, orientation, *, no_hit: str = "inf",
+              rng: np.random.Generator | None = None, time: float = 0.0) -> Scan:
+    """Cast one scan from the sensor pose (world ``position``, quaternion ``orientation``).
+
+    ``rng`` adds the sensor's Gaussian noise (None: no noise, still quantised).
+    """
+    if no_hit not in NO_HIT:
+        raise ValueError(f"no_hit must be one of {sorted(NO_HIT)}, not {no_hit!r}")
+    rot = np.array(pb.getMatrixFromQuaternion(orientation), float).reshape(3, 3)
+    dirs = beam_directions(params) @ rot.T
+    origin = np.asarray(position, float)
+    starts = origin + dirs * params.range_min
+    ends = origin + dirs * params.range_max
+    results = pb.rayTestBatch(starts, ends, collisionFilterMask=SCENE_GROUP, physicsClientId=client)
+    span = params.range_max - params.range_min
+    hit = np.fromiter((r[0] >= 0 for r in results), bool, len(results))
+    fractions = np.fromiter((r[2] for r in results), float, len(results))
+    true = np.where(hit, params.range_min + fractions * span, np.inf)
+    measured = true.copy()
+    if rng is not None and params.noise_stddev > 0:
+        measured[hit] += rng.normal(params.noise_mean, params.noise_stddev, int(hit.sum()))
+    if params.resolution > 0:
+        measured[hit] = np.round(measured[hit] / params.resolution) * params.resolution
+    measured[hit] = np.clip(measured[hit], params.range_min, params.range_max)
+    measured[~hit] = NO_HIT[no_hit]
+    hit_points = starts + (ends - starts) * fractions[:, None]
+    yaw = math.atan2(rot[1, 0], rot[0, 0])
+    return Scan(angle_min=params.min_angle, angle_max=params.min_angle + (params.samples - 1) * params.angle_increment,
+                angle_increment=params.angle_increment, range_min=params.range_min, range_max=params.range_max,
+                ranges=measured.tolist(), true_ranges=true.tolist(),
+                points=[tuple(p) if h else None for p, h in zip(hit_points.tolist(), hit.tolist())],
+                origin=(float(origin[0]), float(origin[1]), float(origin[2]), yaw), time=time, frame_id=params.link)
+
+
+def front_distance(scan: Scan, half_angle: float = math.radians(10), *, true: bool = False) -> float | None:
+    """The nearest reading within ±``half_angle`` of straight ahead (the sensor's +x), ignoring no-hit beams
+    (``inf`` or 0) — what a student's stop-at-wall node computes. ``true`` uses the exact distances. None when
+    every beam there reads no hit."""
+    values = np.asarray(scan.true_ranges if true else scan.ranges, float)
+    angles = np.remainder(scan.angle_min + np.arange(len(values)) * scan.angle_increment + math.pi, math.tau) - math.pi
+    ahead = values[(np.abs(angles) <= half_angle + 1e-9) & np.isfinite(values) & (values > 0.0)]
+    return float(ahead.min()) if ahead.size else None

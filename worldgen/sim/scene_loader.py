@@ -1,0 +1,150 @@
+"""A :class:`~worldgen.scene.Scene` → static pybullet bodies, and contact points back → shape labels.
+
+Boxes, cylinders and spheres go into compound bodies of at most 16 children (pybullet silently drops the
+children of ``createCollisionShapeArray`` beyond 16), meshes become static concave triangle meshes (split when
+they have more vertices than pybullet takes in one shape), planes become infinite ``GEOM_PLANE`` bodies.
+pybullet does not say which child of a compound a contact touched, so :meth:`SceneBodies.label` finds the child
+nearest to the contact point.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+import pybullet as pb
+
+from ..scene import Scene, Shape
+
+COMPOUND_LIMIT = 16            # children per createCollisionShapeArray that pybullet keeps
+MESH_FACES_PER_SHAPE = 30_000  # ≤ 90,000 vertices per shape; pybullet refuses somewhere above 100,000
+# Collision filter bits. Bullet pairs two objects when each one's group meets the other's mask; a ray (whose
+# group is bit 0) hits objects whose group meets the ray's mask and whose mask has bit 0. So scene bodies never
+# pair with each other, both pair with the robot, and rays cast with mask SCENE_GROUP skip the robot.
+RAY_GROUP, SCENE_GROUP, ROBOT_GROUP = 0b001, 0b010, 0b100
+SCENE_MASK, ROBOT_MASK = RAY_GROUP | ROBOT_GROUP, SCENE_GROUP
+SURFACE_FRICTION = 1.0         # Gazebo's default μ for surfaces without a <surface> block
+
+
+@dataclass
+class SceneBodies:
+    """What :func:`load_scene` made: body id → the shapes it holds (in child order), and the plane bodies."""
+
+    shapes: dict[int, list[Shape]] = field(default_factory=dict)
+    planes: set[int] = field(default_factory=set)
+
+    @property
+    def obstacle_bodies(self) -> list[int]:
+        return sorted(b for b in self.shapes if b not in self.planes)
+
+    def shape_at(self, body: int, point) -> Shape | None:
+        """The shape of ``body`` that a contact at world ``point`` touched (the nearest child)."""
+        shapes = self.shapes.get(body)
+        if not shapes:
+            return None
+        if len(shapes) == 1:
+            return shapes[0]
+        return min(shapes, key=lambda s: distance_to_shape(s, point))
+
+    def label(self, body: int, point) -> str:
+        shape = self.shape_at(body, point)
+        return (shape.label or shape.kind) if shape is not None else f"body {body}"
+
+
+def load_scene(client: int, scene: Scene, add_ground: bool = True) -> SceneBodies:
+    """Create static bodies for every shape of ``scene`` in pybullet client ``client``.
+
+    A ground plane at z = 0 is added when the scene has no plane and ``add_ground`` (Gazebo worlds include
+    ``model://ground_plane``, which a reader may not have expanded). Every body gets μ = 1.0 and the scene's
+    collision group.
+    """
+    bodies = SceneBodies()
+    planes = [s for s in scene.shapes if s.kind == "plane"]
+    if not planes and add_ground:
+        planes = [Shape(kind="plane", position=(0.0, 0.0, 0.0), normal=(0.0, 0.0, 1.0), model="ground_plane",
+                        name="added")]
+    for shape in planes:
+        sid = pb.createCollisionShape(pb.GEOM_PLANE, planeNormal=list(shape.normal or (0.0, 0.0, 1.0)),
+                                      physicsClientId=client)
+        body = _static_body(client, sid, shape.position, shape.orientation)
+        bodies.shapes[body] = [shape]
+        bodies.planes.add(body)
+    primitives = sorted((s for s in scene.shapes if s.kind in ("box", "cylinder", "sphere") and _usable(s)),
+                        key=_cell)
+    for start in range(0, len(primitives), COMPOUND_LIMIT):
+        chunk = primitives[start:start + COMPOUND_LIMIT]
+        sid = pb.createCollisionShapeArray(
+            shapeTypes=[_GEOM[s.kind] for s in chunk],
+            halfExtents=[[v / 2 for v in s.size] if s.kind == "box" else [0.0, 0.0, 0.0] for s in chunk],
+            radii=[float(s.radius or 0.0) for s in chunk],
+            lengths=[float(s.length or 0.0) for s in chunk],
+            collisionFramePositions=[list(s.position) for s in chunk],
+            collisionFrameOrientations=[list(s.orientation) for s in chunk],
+            physicsClientId=client)
+        bodies.shapes[_static_body(client, sid, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))] = chunk
+    for shape in scene.shapes:
+        if shape.kind == "mesh" and shape.vertices is not None and shape.faces is not None:
+            for vertices, faces in _mesh_pieces(np.asarray(shape.vertices, float), np.asarray(shape.faces, int)):
+                sid = pb.createCollisionShape(pb.GEOM_MESH, vertices=vertices.tolist(),
+                                              indices=faces.reshape(-1).tolist(),
+                                              flags=pb.GEOM_FORCE_CONCAVE_TRIMESH, physicsClientId=client)
+                bodies.shapes[_static_body(client, sid, shape.position, shape.orientation)] = [shape]
+    return bodies
+
+
+_GEOM = {"box": pb.GEOM_BOX, "cylinder": pb.GEOM_CYLINDER, "sphere": pb.GEOM_SPHERE}
+CELL = 2.0   # m: primitives are grouped by floor cell, so each compound is compact and the robot meets few
+
+
+def _cell(shape: Shape) -> tuple[int, int]:
+    return math.floor(shape.position[0] / CELL), math.floor(shape.position[1] / CELL)
+
+
+def _usable(shape: Shape) -> bool:
+    """Shapes with the sizes their kind needs, all positive (a reader reports the others)."""
+    if shape.kind == "box":
+        return shape.size is not None and all(v > 0 for v in shape.size)
+    if shape.kind == "cylinder":
+        return bool(shape.radius and shape.radius > 0 and shape.length and shape.length > 0)
+    return bool(shape.radius and shape.radius > 0)
+
+
+def _static_body(client: int, sid: int, position, orientation) -> int:
+    body = pb.createMultiBody(baseMass=0, baseCollisionShapeIndex=sid, basePosition=list(position),
+                              baseOrientation=list(orientation), physicsClientId=client)
+    pb.changeDynamics(body, -1, lateralFriction=SURFACE_FRICTION, physicsClientId=client)
+    pb.setCollisionFilterGroupMask(body, -1, SCENE_GROUP, SCENE_MASK, physicsClientId=client)
+    return body
+
+
+def _mesh_pieces(vertices: np.ndarray, faces: np.ndarray):
+    """Split a triangle mesh into pieces of at most MESH_FACES_PER_SHAPE faces, each with its own vertices."""
+    faces = faces[(faces >= 0).all(axis=1) & (faces < len(vertices)).all(axis=1)]
+    for start in range(0, len(faces), MESH_FACES_PER_SHAPE):
+        chunk = faces[start:start + MESH_FACES_PER_SHAPE]
+        used, local = np.unique(chunk.reshape(-1), return_inverse=True)
+        yield vertices[used], local.reshape(-1, 3)
+
+
+def _to_local(shape: Shape, point) -> np.ndarray:
+    x, y, z, w = shape.orientation
+    rot = np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                    [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                    [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
+    return rot.T @ (np.asarray(point, float) - np.asarray(shape.position, float))
+
+
+def distance_to_shape(shape: Shape, point) -> float:
+    """Signed distance from world ``point`` to the surface of a box, cylinder or sphere (negative inside);
+    other kinds: distance to the shape's origin."""
+    p = _to_local(shape, point)
+    if shape.kind == "box" and shape.size is not None:
+        q = np.abs(p) - np.asarray(shape.size, float) / 2
+        return float(np.linalg.norm(np.maximum(q, 0.0)) + min(q.max(), 0.0))
+    if shape.kind == "cylinder" and shape.radius and shape.length:
+        q = np.array([math.hypot(p[0], p[1]) - shape.radius, abs(p[2]) - shape.length / 2])
+        return float(np.linalg.norm(np.maximum(q, 0.0)) + min(q.max(), 0.0))
+    if shape.kind == "sphere" and shape.radius:
+        return float(np.linalg.norm(p) - shape.radius)
+    return float(np.linalg.norm(p))

@@ -1,0 +1,462 @@
+"""``worldgen validate`` as a library: inputs → jobs → results.
+
+An input is a world file (``.world``, ``.sdf``, ``model.sdf``, or anything holding ``<sdf>``), a floorplan spec
+(built to SDF on the fly, exactly as ``worldgen build`` writes it), a roslaunch file (the world it starts, its
+robot model and spawn pose) or a catkin package folder (each of its launch files). :func:`plan` turns inputs
+into :class:`Job` s, refusing bad input (missing paths, bad options) with an :class:`~worldgen.errors.InputError`
+before anything runs; :func:`run_job` validates one job into a :class:`~worldgen.report.Result`;
+:func:`validate` runs many on worker threads, each driving its own child processes for the simulator, and
+returns the results in input order.
+
+Spawn pose, first found: ``--spawn``; the launch file (``--launch``, or the input when it is one); the spec's
+``robot`` entry (the input spec, or a spec of the same name beside the world); the world's origin. The report
+says which.
+"""
+
+from __future__ import annotations
+
+import math
+import tempfile
+from concurrent.futures import ThreadPoolExecutor, as_completed
+from dataclasses import dataclass, field
+from dataclasses import replace as dc_replace
+from pathlib import Path
+from typing import Callable, Sequence
+
+from .checks import (SIM_CHECKS, RobotBody, check_enclosed, check_parse, check_spawn_clear, floor_under, robot_body,
+                     sim_findings)
+from .errors import InputError, SpecError, WorldFileError
+from .findings import Finding
+from .report import Result
+
+SPEC_SUFFIXES = (".yaml", ".yml", ".json", ".txt")
+LAUNCH_SUFFIXES = (".launch", ".launch.xml")
+NO_HIT_CHOICES = ("inf", "zero")
+SIM_TIMEOUT = 120.0   # s of wall time for one world's simulation
+SIM_JOB = "worldgen.checks:simulate"
+
+
+@dataclass(frozen=True)
+class Options:
+    """The command-line options of ``worldgen validate``, as values."""
+
+    robot: str | None = None                               # None: from the launch file or spec, else burger
+    spawn: tuple[float, float, float] | None = None        # x, y, yaw
+    launch: Path | None = None
+    model_paths: tuple[Path, ...] = ()
+    lidar_no_hit: str = "inf"
+    skip_sim: bool = False
+    sim_timeout: float = SIM_TIMEOUT
+
+
+@dataclass
+class Job:
+    """One world to validate and what is known about it before it is read.
+
+    ``world`` is the file to read (None when it could not be found: ``findings`` say why); ``spec`` is set for
+    spec inputs, whose world is built when the job runs. ``pre_checks`` are the checks already done while
+    planning (``launch``, ``package``), whose findings are in ``findings``. A ``package_only`` job is a
+    package folder's own row: its package check and nothing to simulate.
+    """
+
+    path: str
+    world: Path | None = None
+    spec: Path | None = None
+    spawn: tuple[float, float, float] | None = None
+    spawn_source: str = ""
+    robot: str = "burger"
+    robot_source: str = "default"
+    findings: list[Finding] = field(default_factory=list)
+    pre_checks: list[str] = field(default_factory=list)
+    package_only: bool = False
+
+
+# ---------------------------------------------------------------------------------------------------- options
+
+def parse_spawn(text: str) -> tuple[float, float, float]:
+    """``X,Y[,YAW]`` (metres, radians; ``X,Y,Z,YAW`` is accepted too, as launch files write it)."""
+    parts = [p.strip() for p in text.split(",")]
+    try:
+        values = [float(p) for p in parts]
+    except ValueError:
+        values = []
+    if len(values) not in (2, 3, 4) or not all(math.isfinite(v) for v in values):
+        raise InputError(f"bad --spawn value {text!r}",
+                         hint="write --spawn X,Y or X,Y,YAW in metres and radians, e.g. --spawn -5.5,-1.0,1.57")
+    if len(values) == 4:
+        values = [values[0], values[1], values[3]]
+    return (values[0], values[1], values[2] if len(values) == 3 else 0.0)
+
+
+def check_options(options: Options) -> None:
+    """Refuse option values that make no sense (InputError): a no-hit mode, the robot, model paths."""
+    if options.lidar_no_hit not in NO_HIT_CHOICES:
+        raise InputError(f"bad --lidar-no-hit value {options.lidar_no_hit!r}", hint="use inf or zero")
+    if options.robot is not None:
+        robot_body(options.robot)   # raises InputError for an unknown model or unreadable file
+    for p in options.model_paths:
+        if not Path(p).is_dir():
+            raise InputError("--model-path is not a folder", path=p,
+                             hint="give a folder holding Gazebo models (NAME/model.config + model.sdf)")
+    if options.launch is not None and not Path(options.launch).is_file():
+        raise InputError("--launch file not found", path=options.launch, hint="give an existing .launch file")
+
+
+# ------------------------------------------------------------------------------------------------------ plan
+
+def input_kind(path: Path) -> str:
+    """``package``, ``model-folder``, ``spec``, ``launch`` or ``world`` (by suffix, else by content)."""
+    if path.is_dir():
+        if (path / "package.xml").is_file():
+            return "package"
+        if (path / "model.sdf").is_file() or (path / "model.config").is_file():
+            return "model-folder"
+        raise InputError("is a folder but neither a catkin package (package.xml) nor a Gazebo model (model.config)",
+                         path=path, hint="give a world, spec or launch file, or a package folder")
+    name = path.name.lower()
+    if name.endswith(LAUNCH_SUFFIXES):
+        return "launch"
+    if path.suffix.lower() in SPEC_SUFFIXES:
+        return "spec"
+    try:
+        head = path.read_bytes()[:4096].decode("utf-8", "replace")
+    except OSError as err:
+        raise InputError(f"cannot be read: {err.strerror}", path=path) from None
+    launch_at, sdf_at = head.find("<launch"), head.find("<sdf")
+    if launch_at >= 0 and (sdf_at < 0 or launch_at < sdf_at):
+        return "launch"
+    return "world"
+
+
+def plan(paths: Sequence[str | Path], options: Options) -> list[Job]:
+    """The jobs for ``paths`` in order (a package gives one job per launch file). Raises InputError for a
+    missing path or bad options, before anything is validated."""
+    if not paths:
+        raise InputError("no input given", hint="give world, spec or launch files, or package folders")
+    check_options(options)
+    launch_info = _read_launch(Path(options.launch)) if options.launch is not None else None
+    jobs: list[Job] = []
+    for given in paths:
+        path = Path(given)
+        if not path.exists():
+            raise InputError("no such file or folder", path=path, hint="check the path")
+        kind = input_kind(path)
+        if kind == "package":
+            jobs += _package_jobs(path, options)
+            continue
+        if kind == "launch":
+            job = _launch_job(path, _read_launch(path), str(given))
+        elif kind == "spec":
+            job = _spec_job(path, str(given))
+        else:
+            job = Job(path=str(given), world=path)   # read_world reads a model folder's model.sdf itself
+            if kind == "world":
+                _spec_beside(job, path)
+        if launch_info is not None:
+            _apply_launch(job, launch_info, Path(options.launch))
+        jobs.append(_apply_options(job, options))
+    return jobs
+
+
+def _read_launch(path: Path):
+    from .launch import read_launch
+
+    return read_launch(path)
+
+
+def _package_jobs(folder: Path, options: Options) -> list[Job]:
+    """A package gives a row of its own (the package check) and one job per launch file."""
+    from .launch import package_launch_files
+
+    findings = _package_findings(folder)
+    launches = package_launch_files(folder)
+    if not launches:
+        findings.append(Finding("package", "error", "the package has no launch files",
+                                where=str(folder), fix="add a launch/ file that starts the world "
+                                                       "(worldgen launch WORLD --package PKG writes one)"))
+    jobs = [Job(path=str(folder), pre_checks=["package"], findings=findings, package_only=True)]
+    for launch in launches:
+        jobs.append(_apply_options(_launch_job(launch, _read_launch(launch), str(launch)), options))
+    return jobs
+
+
+def _package_findings(folder: Path) -> list[Finding]:
+    """:func:`worldgen.launch.check_package`, its ids put under ``package-`` (``cmake`` → ``package-cmake``)."""
+    from .launch import check_package
+
+    return [f if f.check.startswith("package") else dc_replace(f, check=f"package-{f.check}")
+            for f in check_package(folder)]
+
+
+def _pose3(pose) -> tuple[float, float, float] | None:
+    """A launch pose (x, y, z, yaw) → (x, y, yaw)."""
+    if pose is None:
+        return None
+    values = list(pose) + [0.0] * (4 - len(pose))
+    return (float(values[0]), float(values[1]), float(values[3]))
+
+
+def _launch_job(path: Path, info, display: str) -> Job:
+    job = Job(path=display, pre_checks=["launch"], findings=list(info.findings))
+    if info.world_path is not None and Path(info.world_path).is_file():
+        job.world = Path(info.world_path)
+    else:
+        ref = info.world_ref or "(none)"
+        job.findings.append(Finding(
+            "launch", "error", f"the world this launch file starts cannot be found: {ref}",
+            where=str(path), fix="make the world_name argument point to an existing world file (is the package "
+                                 "on ROS_PACKAGE_PATH?), or validate the world itself with --launch THIS_FILE"))
+    _take_launch_pose(job, info, path)
+    return job
+
+
+def _take_launch_pose(job: Job, info, path: Path) -> None:
+    pose = _pose3(info.spawn)
+    if pose is not None:
+        job.spawn, job.spawn_source = pose, f"from launch file {path}"
+    if info.model in ("burger", "waffle", "waffle_pi"):
+        job.robot, job.robot_source = info.model, f"launch file {path}"
+
+
+def _apply_launch(job: Job, info, path: Path) -> None:
+    """``--launch FILE`` for a world given on the command line: its spawn pose and robot, and whether it starts
+    this world at all."""
+    if "launch" not in job.pre_checks:
+        job.pre_checks.append("launch")
+        job.findings += list(info.findings)
+    _take_launch_pose(job, info, path)
+    if job.world is None:
+        return
+    launch_world = Path(info.world_path) if info.world_path is not None else None
+    if launch_world is not None and launch_world.is_file():
+        if launch_world.resolve() != job.world.resolve():
+            job.findings.append(Finding(
+                "launch", "warning", f"the launch file starts {launch_world}, not {job.world}",
+                where=str(path), fix="point the launch file's world_name at this world, or validate the world "
+                                     "it starts"))
+        return
+    ref = info.world_ref or "(none)"
+    same_name = Path(ref).name == job.world.name
+    job.findings.append(Finding(
+        "launch", "info" if same_name else "warning",
+        f"the launch file's world {ref} cannot be found here; validating {job.world} given on the command line "
+        "instead" + ("" if same_name else f" (whose name differs from {Path(ref).name})"),
+        where=str(path), fix=None if same_name else "check that the launch file starts this world"))
+
+
+def _spec_job(path: Path, display: str) -> Job:
+    job = Job(path=display, spec=path)
+    try:
+        from .spec import load_spec
+
+        spec = load_spec(path)
+    except SpecError as err:
+        job.findings.append(Finding("parse", "error", str(err), where=str(path),
+                                    fix="fix the spec (worldgen build gives the same message)"))
+        return job
+    _take_spec_pose(job, spec, path)
+    return job
+
+
+def _take_spec_pose(job: Job, spec, path: Path) -> None:
+    if spec.robot is not None:
+        job.spawn = (float(spec.robot.at[0]), float(spec.robot.at[1]), float(spec.robot.yaw))
+        job.spawn_source = f"from spec {path}"
+        job.robot, job.robot_source = spec.robot.model, f"spec {path}"
+
+
+def _spec_beside(job: Job, world: Path) -> None:
+    """A world built by ``worldgen build`` has its spec beside it (same name): take the robot pose from it."""
+    for suffix in (".yaml", ".yml", ".json"):
+        spec_path = world.with_suffix(suffix)
+        if spec_path.is_file():
+            try:
+                from .spec import load_spec
+
+                _take_spec_pose(job, load_spec(spec_path), spec_path)
+            except SpecError:
+                pass
+            return
+
+
+def _apply_options(job: Job, options: Options) -> Job:
+    if options.spawn is not None:
+        job.spawn, job.spawn_source = options.spawn, "from --spawn"
+    if options.robot is not None:
+        job.robot, job.robot_source = options.robot, "--robot"
+    if job.spawn is None:
+        job.spawn, job.spawn_source = (0.0, 0.0, 0.0), "at the world's origin (no --spawn, launch file or spec)"
+    return job
+
+
+# ------------------------------------------------------------------------------------------------------- run
+
+def _spec_world_text(path: Path) -> str:
+    from .geometry import build_geometry
+    from .sdf.writer import world_sdf
+    from .spec import load_spec
+
+    return world_sdf(build_geometry(load_spec(path)))
+
+
+@dataclass(frozen=True)
+class WorldSource:
+    """Where a job's world comes from: a file, or SDF text built from a spec (``path`` then names the spec's
+    would-be world file, for messages)."""
+
+    path: Path
+    text: str | None = None
+
+    def read(self, model_paths):
+        from .sdf.reader import read_world, read_world_text
+
+        if self.text is not None:
+            return read_world_text(self.text, source=self.path, model_paths=model_paths)
+        return read_world(self.path, model_paths=model_paths)
+
+    def job_kwargs(self) -> dict:
+        if self.text is not None:
+            return {"world_text": self.text, "source": str(self.path)}
+        return {"world": str(self.path)}
+
+
+def run_job(job: Job, options: Options) -> Result:
+    """Validate one job: read the world, run the geometric checks here and the simulated ones in one child
+    process. Never raises for a problem with the file: problems become findings."""
+    result = Result(path=job.path, spawn=job.spawn, spawn_source=job.spawn_source, robot=job.robot,
+                    findings=list(job.findings), checks=list(job.pre_checks))
+    if job.package_only:
+        result.spawn, result.spawn_source = None, ""
+        return result
+    if job.spec is not None:
+        if any(f.severity == "error" for f in job.findings):
+            return _skip_rest(result, "the spec cannot be read")
+        try:
+            source = WorldSource(job.spec.with_suffix(".world"), _spec_world_text(job.spec))
+        except SpecError as err:
+            result.findings.append(Finding("parse", "error", str(err), where=str(job.spec)))
+            return _skip_rest(result, "the spec cannot be built")
+        return _run_world(result, source, options)
+    if job.world is None:
+        return _skip_rest(result, "no world to read")
+    return _run_world(result, WorldSource(job.world), options)
+
+
+def _skip_rest(result: Result, why: str) -> Result:
+    for check in ("parse", "enclosed", "spawn-clear", *SIM_CHECKS):
+        if check not in result.checks:
+            result.skipped[check] = why
+    return result
+
+
+def _run_world(result: Result, source: WorldSource, options: Options) -> Result:
+    result.checks.append("parse")
+    try:
+        scene = source.read(tuple(options.model_paths))
+    except WorldFileError as err:
+        result.findings.append(Finding("parse", "error", str(err), where=err.path or str(source.path),
+                                       fix="fix the file so that Gazebo can load it"))
+        return _skip_rest(result, "the world cannot be read")
+    outcome = check_parse(scene)
+    result.findings += outcome.findings
+    result.metrics.update(outcome.metrics)
+    body = robot_body(result.robot)
+    ground, floor = floor_under(scene, result.spawn)
+    result.metrics.update(floor)
+    for name, check in (("enclosed", check_enclosed), ("spawn-clear", check_spawn_clear)):
+        result.checks.append(name)
+        outcome = check(scene, result.spawn, body, ground)
+        result.findings += outcome.findings
+        result.metrics.update(outcome.metrics)
+    if options.skip_sim:
+        for name in SIM_CHECKS:
+            result.skipped[name] = "--skip-sim"
+        return result
+    _simulate(result, source, options, body, ground)
+    return result
+
+
+def _simulate(result: Result, source: WorldSource, options: Options, body: RobotBody, ground: float) -> None:
+    """The simulated checks in one child process; a crash, a timeout or an error there becomes one error
+    finding naming the stage it happened in, and the checks it prevented are skipped."""
+    from .errors import WorldgenError
+    from .sim.process import SimCrashed, SimError, run_isolated
+
+    with tempfile.TemporaryDirectory(prefix="worldgen_validate_") as tmp:
+        stage_file = Path(tmp) / "stage"
+        kwargs = {**source.job_kwargs(), "model_paths": [str(p) for p in options.model_paths],
+                  "robot": result.robot, "spawn": list(result.spawn), "no_hit": options.lidar_no_hit,
+                  "stage_file": str(stage_file)}
+        try:
+            numbers = run_isolated(SIM_JOB, kwargs, options.sim_timeout)
+            failure = None
+        except SimCrashed as err:
+            what = (f"did not finish within {options.sim_timeout:g} s" if err.timed_out else
+                    f"crashed ({_exit_text(err.rc)})")
+            failure = f"pybullet {what} while {_stage(stage_file)}"
+        except SimError as err:
+            failure = f"the simulation failed while {_stage(stage_file)}: {err}"
+        except WorldgenError as err:
+            failure = f"the simulation could not run ({_stage(stage_file)}): {err}"
+    if failure is not None:
+        result.checks.append("settle")
+        result.findings.append(Finding("settle", "error", failure,
+                                       fix="--skip-sim checks this world without the simulator; please report "
+                                           "the world to the worldgen developers if it loads in Gazebo"))
+        for name in SIM_CHECKS[1:]:
+            result.skipped[name] = "the simulation did not run to the end"
+        return
+    result.checks += [name for name in SIM_CHECKS if name in numbers["ran"]]
+    for name in SIM_CHECKS:
+        if name not in numbers["ran"]:
+            result.skipped[name] = "not possible with this robot"
+    outcome = sim_findings(numbers, body, options.lidar_no_hit, ground)
+    result.findings += outcome.findings
+    result.metrics.update(outcome.metrics)
+    result.metrics["sim_seconds"] = numbers.get("sim_seconds")
+    result.metrics["sim_wall_seconds"] = numbers.get("wall_seconds")
+
+
+def _stage(stage_file: Path) -> str:
+    try:
+        return stage_file.read_text(encoding="utf-8").strip() or "starting"
+    except OSError:
+        return "starting"
+
+
+def _exit_text(rc: int | None) -> str:
+    if rc is None:
+        return "no exit code"
+    if rc < 0:
+        import signal
+
+        try:
+            return f"killed by {signal.Signals(-rc).name}"
+        except ValueError:
+            return f"killed by signal {-rc}"
+    return f"exit code {rc}"
+
+
+def run_jobs(planned: Sequence[Job], options: Options, workers: int = 1,
+             progress: Callable[[Result], None] | None = None) -> list[Result]:
+    """Run planned jobs on ``workers`` threads (each drives its own simulator processes); results in job order,
+    ``progress`` called as each one finishes."""
+    if workers <= 1 or len(planned) <= 1:
+        results = []
+        for job in planned:
+            results.append(run_job(job, options))
+            if progress:
+                progress(results[-1])
+        return results
+    with ThreadPoolExecutor(max_workers=workers) as pool:
+        futures = [pool.submit(run_job, job, options) for job in planned]
+        if progress:
+            for future in as_completed(futures):
+                progress(future.result())
+        return [f.result() for f in futures]
+
+
+def validate(paths: Sequence[str | Path], options: Options = Options(), jobs: int = 1,
+             progress: Callable[[Result], None] | None = None) -> list[Result]:
+    """:func:`plan` then :func:`run_jobs`: every input validated, results in input order."""
+    return run_jobs(plan(paths, options), options, jobs, progress)
