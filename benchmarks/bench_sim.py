@@ -19,8 +19,10 @@ sys.path.insert(0, str(REPO))
 from worldgen.scene import Scene, Shape  # noqa: E402
 
 CORPUS = REPO.parent / "shared" / "corpus"
-CLASS_ROOM = CORPUS / "worlds" / "Intro-Robotics-UChicago-Spring-2022__warmup_project__worlds_turtlebot3_in_enclosed_room.world"
-TB3_WORLD = CORPUS / "worlds" / "ROBOTIS-GIT__turtlebot3_simulations@noetic-devel__turtlebot3_gazebo_worlds_turtlebot3_world.world"
+CLASS_ROOM = (CORPUS / "worlds" /
+              "Intro-Robotics-UChicago-Spring-2022__warmup_project__worlds_turtlebot3_in_enclosed_room.world")
+TB3_WORLD = (CORPUS / "worlds" /
+             "ROBOTIS-GIT__turtlebot3_simulations@noetic-devel__turtlebot3_gazebo_worlds_turtlebot3_world.world")
 
 
 def hand_room() -> Scene:

@@ -50,7 +50,7 @@ def ros_env(tmp: Path, **extra: str) -> dict[str, str]:
     """The environment for a ROS tool: ROS_HOME and ROS_LOG_DIR under ``tmp``, no inherited master or
     package path, plus ``extra``."""
     env = {k: v for k, v in os.environ.items()
-           if not k.startswith("ROS_") and k not in ("TURTLEBOT3_MODEL", "PYTHONPATH", "VIRTUAL_ENV")}
+           if not k.startswith("ROS_") and k not in ("TURTLEBOT3_MODEL", "PYTHONPATH", "VIRTUAL_ENV", "PWD")}
     (tmp / "ros_home").mkdir(parents=True, exist_ok=True)
     env.update(ROS_HOME=str(tmp / "ros_home"), ROS_LOG_DIR=str(tmp / "ros_home" / "log"), **extra)
     return env
@@ -123,29 +123,34 @@ def make_stub_packages(root: Path) -> Path:
     return root
 
 
-# roslaunch's own loader, run under Debian's python: prints the nodes and the params it would set, as JSON.
+# roslaunch's own loader, run under Debian's python: for each (file, argv) of the JSON argument, the nodes and the
+# params it would start and set, as one JSON list.
 ROSLAUNCH_LOAD = r"""
 import json, sys
 import roslaunch.config
-path, argv = sys.argv[1], sys.argv[2:]
-config = roslaunch.config.load_config_default([(path, argv)], None)
-print(json.dumps({
-    "nodes": [{"name": n.name, "namespace": n.namespace, "package": n.package, "type": n.type, "args": n.args}
-              for n in config.nodes],
-    "params": {k: (v.value if isinstance(v.value, (str, int, float, bool)) else str(v.value))
-               for k, v in config.params.items()},
-}))
+out = []
+for path, argv in json.loads(sys.argv[1]):
+    config = roslaunch.config.load_config_default([(path, argv)], None)
+    out.append({
+        "nodes": [{"name": n.name, "namespace": n.namespace, "package": n.package, "type": n.type, "args": n.args}
+                  for n in config.nodes],
+        "params": {k: (v.value if isinstance(v.value, (str, int, float, bool)) else str(v.value))
+                   for k, v in config.params.items()},
+    })
+print(json.dumps(out))
 """
 
 
-def roslaunch_load(launch: Path, argv: list[str], env: dict[str, str]) -> dict:
-    """roslaunch's parse of ``launch`` with ``argv`` (``name:=value``): {"nodes": [...], "params": {...}}."""
+def roslaunch_load(items: list[tuple[Path, list[str]]], env: dict[str, str]) -> list[dict]:
+    """roslaunch's parse of each launch file with its argv (``name:=value``), in one process:
+    ``[{"nodes": [...], "params": {...}}, ...]``."""
     import json
 
-    proc = subprocess.run([SYSTEM_PYTHON, "-c", ROSLAUNCH_LOAD, str(launch), *argv], capture_output=True,
-                          text=True, env=env, timeout=60)
+    request = json.dumps([[str(path), list(argv)] for path, argv in items])
+    proc = subprocess.run([SYSTEM_PYTHON, "-c", ROSLAUNCH_LOAD, request], capture_output=True, text=True, env=env,
+                          timeout=120)
     if proc.returncode != 0:
-        raise AssertionError(f"roslaunch could not load {launch}:\n{proc.stderr[-3000:]}")
+        raise AssertionError(f"roslaunch could not load {[str(p) for p, _ in items]}:\n{proc.stderr[-3000:]}")
     return json.loads(proc.stdout.strip().splitlines()[-1])
 
 
@@ -245,4 +250,21 @@ for front in cases:
         time.sleep(0.05)
     print(json.dumps({"front": str(front), "linear": answers[-1][0] if answers else None,
                       "angular": answers[-1][1] if answers else None}), flush=True)
+"""
+
+# Reports the first geometry_msgs/Twist seen on cmd_vel, as JSON.
+TWIST_ECHO = r"""
+import json, sys, time
+import rospy
+from geometry_msgs.msg import Twist
+
+rospy.init_node("twist_echo", disable_signals=True)
+seen = []
+rospy.Subscriber("cmd_vel", Twist, lambda m: seen.append((m.linear.x, m.angular.z)))
+deadline = time.monotonic() + 20
+while not seen and time.monotonic() < deadline:
+    time.sleep(0.02)
+if not seen:
+    sys.exit("no Twist on cmd_vel within 20 s")
+print(json.dumps({"linear": seen[0][0], "angular": seen[0][1]}), flush=True)
 """

@@ -84,7 +84,8 @@ CASES = [
      ["ends 5 m along wall 2", "inside the corner"]),
     ("door-taller-than-wall", OPENINGS + "      - {type: door, wall: 1, height: 3}\n", 6,
      ["door 1 of room 'main' is 3 m tall, but the walls of room 'main' are 2.5 m"]),
-    ("door-in-low-wall", "name: t\nwalls: {height: 1.5}\nrooms:\n  - name: a\n    rect: {center: [0, 0], size: [5, 5]}\n"
+    ("door-in-low-wall", "name: t\nwalls: {height: 1.5}\nrooms:\n  - name: a\n"
+                         "    rect: {center: [0, 0], size: [5, 5]}\n"
                          "    openings: [{type: door, wall: 0, height: 2.0}]\n", 6, ["2 m tall", "are 1.5 m"]),
     ("window-above-wall", OPENINGS + "      - {type: window, wall: 1, sill: 2, height: 1}\n", 6,
      ["window 1 of room 'main' reaches 3 m up", "above the 2.5 m walls"]),

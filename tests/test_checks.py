@@ -42,12 +42,29 @@ def test_gap_finding_says_where_how_wide_and_whether_the_robot_fits():
     [finding] = errors(out, "enclosed")
     assert "0.50 m gap at (0.75, -2.5" in finding.message
     assert "can drive out" in finding.message
-    assert out.metrics["enclosed"] is False and out.metrics["robot_fits_gap"] is True
+    assert out.metrics["enclosed"] is False and out.metrics["robot_enclosed"] is False
     [gap] = out.metrics["gaps"]
     assert math.dist(gap["centre"], (0.75, -2.5)) < 0.3 and gap["width"] == pytest.approx(0.5, abs=0.01)
+    assert out.metrics["exits"] == out.metrics["gaps"]
+    # 0.25 m: the burger (0.178 m) drives out, the waffle (0.306 m) does not, but its beams still leave
+    assert errors(check_enclosed(square_room(door=(0, 3.0, 0.25)), (0.0, 0.0, 0.0), BURGER))
     narrow = check_enclosed(square_room(door=(0, 3.0, 0.25)), (0.0, 0.0, 0.0), WAFFLE)
-    assert "too narrow for the waffle (0.306 m wide)" in errors(narrow)[0].message
-    assert narrow.metrics["robot_fits_gap"] is False
+    [warning] = narrow.findings
+    assert warning.severity == "warning" and "the waffle cannot pass (too narrow)" in warning.message
+    assert narrow.metrics["enclosed"] is False and narrow.metrics["robot_enclosed"] is True
+
+
+def test_low_window_leaks_beams_but_holds_the_robot():
+    # wall 0 open between x = -1 and 1 from 0.1 m to 0.4 m: a sill under the beams, a lintel above
+    shapes = [s for s in square_room().shapes if s.link != "Wall_0"]
+    shapes += [wall((-2.5, -2.5), (-1.0, -2.5), "Wall_0_0"), wall((1.0, -2.5), (2.5, -2.5), "Wall_0_1"),
+               wall((-1.0, -2.5), (1.0, -2.5), "Wall_0_2", z1=0.1), wall((-1.0, -2.5), (1.0, -2.5), "Wall_0_3",
+                                                                      z0=0.4)]
+    out = check_enclosed(Scene(None, shapes=shapes), (0.0, 0.0, 0.0), BURGER)
+    [warning] = out.findings
+    assert warning.severity == "warning" and "LiDAR beams leave the room through a 2.00 m opening" in warning.message
+    assert "something below or above the beams blocks it" in warning.message
+    assert out.metrics["enclosed"] is False and out.metrics["robot_enclosed"] is True
 
 
 def test_no_walls_and_outside_the_room_are_told_apart():

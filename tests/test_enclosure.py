@@ -90,6 +90,32 @@ def test_two_gaps_are_both_listed_widest_first():
     assert math.dist(e.gaps[1].centre, (0.75, -2.5)) < 0.3
 
 
+def test_way_out_is_the_door_not_the_space_beside_a_partition():
+    # an L-shaped hall with a 1 m door in its right wall (x = 6, y 1 … 2) and a free-standing partition in the
+    # wide part: the narrowest cut lies beside the partition (0.6–0.75 m), but the way out is the door
+    corners = [(0, 0), (6, 0), (6, 3), (3, 3), (3, 6), (0, 6)]
+    shapes = []
+    for i, (a, b) in enumerate(zip(corners, corners[1:] + corners[:1])):
+        if i == 1:
+            shapes += [wall(a, (6, 1), "Wall_1_0"), wall((6, 2), b, "Wall_1_1")]
+        else:
+            shapes.append(wall(a, b, f"Wall_{i}"))
+    shapes.append(wall((4.5, 0.9), (4.5, 2.4), "partition", z1=1.0))
+    e = enclosure(Scene(None, shapes=shapes), (1.5, 1.5), LIDAR_Z)
+    assert e.enclosed is False
+    assert [(round(g.centre[0], 1), round(g.centre[1], 1), round(g.width, 2)) for g in e.gaps] == [(6.1, 1.5, 1.0)]
+
+
+def test_way_out_of_a_room_through_a_corridor_is_the_corridor_end():
+    # room (±2.5) with a 0.8 m door in its right wall into a 2 m wide corridor whose far end (x = 6) has a 1 m gap
+    room = square_room(door=(1, 2.1, 0.8))
+    corridor = [wall((2.5, 1.0), (6.0, 1.0), "corridor_n"), wall((2.5, -1.0), (6.0, -1.0), "corridor_s"),
+                wall((6.0, -1.0), (6.0, -0.5), "end_s"), wall((6.0, 0.5), (6.0, 1.0), "end_n")]
+    e = enclosure(Scene(None, shapes=room.shapes + corridor), (0.0, 0.0), LIDAR_Z)
+    [gap] = e.gaps
+    assert math.dist(gap.centre, (6.0, 0.0)) < 0.3 and gap.width == pytest.approx(1.0, abs=0.01)
+
+
 def test_missing_wall_is_one_wide_gap_on_that_side():
     shapes = [s for s in square_room().shapes if s.link != "Wall_2"]
     e = enclosure(Scene(None, shapes=shapes), (0.0, -1.0), LIDAR_Z)

@@ -14,7 +14,7 @@ from matplotlib.image import imread
 from worldgen.cli import main
 from worldgen.preview import (DOOR_COLOUR, OBSTACLE_COLOUR, ROBOT_COLOUR, WALL_COLOUR, WINDOW_COLOUR, Picture,
                               Spawn, figure, parse_spawn, picture, render)
-from worldgen.scene import Scene, Shape
+from worldgen.scene import Scene
 
 WORLD = """\
 <?xml version="1.0"?>
@@ -179,3 +179,13 @@ def test_lidar_rays_end_on_the_walls(tmp_path):
     assert all(abs(max(abs(x1), abs(y1)) - 2.425) < 0.01 for _, _, x1, y1, _ in rays)
     data = render(pic, rays)
     assert data != render(pic)
+
+
+def test_grid_posts_are_drawn_as_walls(tmp_path):
+    spec = tmp_path / "posts.yaml"
+    spec.write_text('name: posts\ngrid: {cell: 1, rows: ["#######", "#R....#", "#..#..#", "#.....#", "#######"]}\n')
+    pic = picture(spec)
+    data = render(pic)
+    assert _is(_colour_at(pic, data, 3.5, 2.5), WALL_COLOUR)     # the lone '#' in row 3, column 4
+    assert _is(_colour_at(pic, data, 0.5, 2.5), WALL_COLOUR)     # the left wall
+    assert _floor(_colour_at(pic, data, 2.4, 2.4))

@@ -196,19 +196,23 @@ def test_user_urdf_with_package_meshes_loads_in_pybullet(tmp_path, monkeypatch):
              "</collision>" + inertial.format(m=0.05) + "</link>")
     urdf = tmp_path / "robot.urdf"
     urdf.write_text(
-        "<robot name='mybot'><link name='base'>"
+        "<robot name='mybot'><link name='footprint'/><joint name='fix' type='fixed'><parent link='footprint'/>"
+        "<child link='base'/></joint><link name='base'>"
         "<visual><geometry><mesh filename='package://my_description/meshes/missing.dae'/></geometry></visual>"
         "<collision><origin xyz='0 0 0.1'/><geometry><mesh filename='package://my_description/meshes/body.stl'/>"
         "</geometry></collision>" + inertial.format(m=1.5) + "</link>"
         + wheel.format(s="left", y=0.13) + wheel.format(s="right", y=-0.13) + "</robot>")
     monkeypatch.setenv("ROS_PACKAGE_PATH", str(tmp_path))
     with Session(None, urdf) as session:
+        import pybullet as pb
+        masses = [pb.getDynamicsInfo(session.robot, i, physicsClientId=session.client)[0] for i in session.link_name]
+        assert sum(masses) == pytest.approx(1.6, abs=1e-4)   # the frame link without <inertial> adds nothing
         drive = session.profile.drive
         assert not drive.from_plugin
         assert drive.wheel_separation == pytest.approx(0.26) and drive.wheel_radius == pytest.approx(0.05)
         assert session.lidar is None
         session.run(0.3)
-        assert session.link_pose("base")[0][2] == pytest.approx(0.0, abs=0.01)   # on its wheels, not fallen through
+        assert session.odometry().z == pytest.approx(0.0, abs=0.01)   # on its wheels, not fallen through
         session.cmd_vel(0.2)
         session.run(1.0)
         assert session.odometry().x > 0.1

@@ -264,7 +264,7 @@ def test_package_folder_validates_each_launch_file(tmp_path):
     (pkg / "package.xml").write_text("""<?xml version="1.0"?>
 <package format="2">
   <name>my_room</name><version>0.0.0</version><description>room</description>
-  <maintainer email="a@b.c">a</maintainer><license>MIT</license>
+  <maintainer email="student@example.com">student</maintainer><license>MIT</license>
   <buildtool_depend>catkin</buildtool_depend>
   <exec_depend>gazebo_ros</exec_depend>
 </package>
@@ -289,7 +289,15 @@ def test_package_folder_validates_each_launch_file(tmp_path):
     assert package_row["checks"] == ["package"]
     assert launch_row["spawn"] == [0.8, -0.6, 0.0] and launch_row["metrics"]["enclosed"] is True
     assert code == (0 if doc["ok"] else 1)
-    assert all(f["severity"] != "error" for r in doc["results"] for f in r["findings"]), doc
+    assert all(f["severity"] != "error" for r in doc["results"] for f in r["findings"]), json.dumps(doc, indent=1)
+    # the package check's own findings land on the package's row, under the package test case
+    (pkg / "CMakeLists.txt").unlink()
+    report = tmp_path / "junit.xml"
+    code, doc = as_json(pkg, "--skip-sim", "--junit", report)
+    assert code == 1 and doc["results"][0]["ok"] is False and doc["results"][1]["ok"] is True
+    assert [f["check"] for f in doc["results"][0]["findings"]] == ["package-cmake"]
+    failing = etree.parse(str(report)).getroot().xpath("//testcase[failure]")
+    assert [(c.get("classname"), c.get("name")) for c in failing] == [(str(pkg), "package")]
 
 
 # ------------------------------------------------------------------------------------------- our examples

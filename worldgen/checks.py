@@ -214,27 +214,47 @@ def check_enclosed(scene: Scene, spawn: tuple[float, float, float], body: RobotB
                        "opening narrower than 8 m would close the region round it")
             fix = "put the spawn inside a room, or close the room round it"
         return Outcome([Finding("enclosed", "error", message, where=where, fix=fix)], metrics)
-    findings = []
-    for gap in found.gaps[:MAX_GAP_FINDINGS]:
-        fits = gap.width >= body.width
-        side = f" between {' and '.join(gap.between)}" if gap.between else ""
-        passage = (f"the {body.name} ({body.width:.3f} m wide) can drive out through it" if fits else
-                   f"too narrow for the {body.name} ({body.width:.3f} m wide), but LiDAR beams pass through it")
+    # The plane is open. Can the robot itself leave? Its body spans the floor to its top, so a window sill or a
+    # low obstacle under the beams may hold it in while the beams still pass.
+    from .enclosure import analyse, footprints_between
+
+    band = analyse(footprints_between(scene, ground + CLIMB, ground + body.height, also=(height,)), spawn[:2],
+                   height)
+    exits = [g for g in band.gaps if g.width >= body.width] if band.enclosed is False else []
+    if band.enclosed is False and not band.gaps:      # nothing at all stops it
+        exits = [g for g in found.gaps if g.width >= body.width]
+    leaks = [g for g in found.gaps if all(math.dist(g.centre, e.centre) > 0.3 for e in exits)]
+    metrics["robot_enclosed"] = not exits
+    metrics["exits"] = [g.to_dict() for g in exits]
+    findings = [Finding(
+        "enclosed", "error",
+        f"the room is open: a {gap.width:.2f} m gap at {_xy(gap.centre)}{_between(gap)}; the {body.name} "
+        f"({body.width:.3f} m wide) can drive out through it",
+        where=f"gap from {_xy(gap.ends[0])} to {_xy(gap.ends[1])}",
+        fix="close the gap (join the walls there, or remove the opening), or move the spawn into a closed room")
+        for gap in exits[:MAX_GAP_FINDINGS]]
+    findings += [Finding(
+        "enclosed", "warning",
+        f"LiDAR beams leave the room through a {gap.width:.2f} m opening at {_xy(gap.centre)}{_between(gap)} "
+        f"({height:.3f} m above the ground); the {body.name} cannot pass "
+        + ("(too narrow)" if gap.width < body.width else "(something below or above the beams blocks it)"),
+        where=f"opening from {_xy(gap.ends[0])} to {_xy(gap.ends[1])}",
+        fix="close it at LiDAR height if the robot should see walls all round, or handle the readings that "
+            "see nothing")
+        for gap in leaks[:MAX_GAP_FINDINGS]]
+    shown = min(len(exits), MAX_GAP_FINDINGS) + min(len(leaks), MAX_GAP_FINDINGS)
+    rest = [g for g in exits[MAX_GAP_FINDINGS:] + leaks[MAX_GAP_FINDINGS:]]
+    if rest:
         findings.append(Finding(
-            "enclosed", "error",
-            f"the room is open: a {gap.width:.2f} m gap at {_xy(gap.centre)}{side}; {passage}",
-            where=f"gap from {_xy(gap.ends[0])} to {_xy(gap.ends[1])}",
-            fix="close the gap (join the walls there, or remove the opening), or move the spawn into a "
-                "closed room"))
-    if len(found.gaps) > MAX_GAP_FINDINGS:
-        rest = found.gaps[MAX_GAP_FINDINGS:]
-        findings.append(Finding(
-            "enclosed", "error",
+            "enclosed", "error" if len(exits) > MAX_GAP_FINDINGS else "warning",
             f"… and {len(rest)} more gaps, {min(g.width for g in rest):.2f} to {max(g.width for g in rest):.2f} m "
-            "wide (all listed in the JSON report's metrics.gaps)",
+            f"wide, beyond the {shown} above (all listed in the JSON report's metrics.gaps)",
             fix="close the gaps, or move the spawn into a closed room"))
-    metrics["robot_fits_gap"] = any(g.width >= body.width for g in found.gaps)
     return Outcome(findings, metrics)
+
+
+def _between(gap) -> str:
+    return f" between {' and '.join(gap.between)}" if gap.between else ""
 
 
 # ------------------------------------------------------------------------------------------- spawn-clear

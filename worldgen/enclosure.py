@@ -268,12 +268,14 @@ def footprints(scene: Scene, z: float) -> list[Footprint]:
     return out
 
 
-def footprints_between(scene: Scene, z0: float, z1: float, steps: int = 4) -> list[Footprint]:
-    """Footprints of everything between heights ``z0`` and ``z1``: sections at ``steps`` heights, united per
-    shape. Used for the robot's body, which spans a height range rather than a single plane."""
+def footprints_between(scene: Scene, z0: float, z1: float, steps: int = 4, also: tuple[float, ...] = ()
+                       ) -> list[Footprint]:
+    """Footprints of everything between heights ``z0`` and ``z1``: sections at ``steps`` heights (and at the
+    heights in ``also``), united per shape. Used for the robot's body, which spans a height range rather than
+    a single plane."""
     import shapely
 
-    heights = [z0 + (z1 - z0) * i / (steps - 1) for i in range(steps)]
+    heights = sorted({z0 + (z1 - z0) * i / (steps - 1) for i in range(steps)} | set(also))
     out = []
     for shape in scene.obstacles():
         parts = [g for g in (section(shape, z) for z in heights) if g is not None and not g.is_empty]
@@ -341,51 +343,47 @@ def _components(geometry) -> list:
     return [p for p in shapely.get_parts(geometry) if p.geom_type == "Polygon" and p.area > 0]
 
 
-def _spawn_component(free, spawn):
-    """The component of ``free`` holding ``spawn`` (or, when the spawn sits right on its edge, the nearest)."""
-    import shapely
-
-    point = shapely.Point(spawn)
-    parts = _components(free)
-    if not parts:
-        return None
-    holding = [p for p in parts if p.covers(point)]
-    return holding[0] if holding else min(parts, key=point.distance)
-
-
 def _reaches_outside(component, frame) -> bool:
     return component is not None and component.exterior.distance(frame.exterior) < 1e-9
 
 
-def _closing(obstacles, r: float):
-    return obstacles.buffer(r, quad_segs=8).buffer(-r, quad_segs=8)
+class _Scales:
+    """One obstacle set closed at various radii (cached): what stays free, and which part of it is outside.
 
+    Closing with radius ``r`` plugs every opening narrower than ``2·r``; the free component touching the frame
+    is the outside at that scale. A point is cut off at scale ``r`` when it is not in that outside.
+    """
 
-def _cut_off(obstacles, frame, spawn, r: float) -> bool:
-    """True when closing the obstacles with radius ``r`` separates the spawn from the outside."""
-    import shapely
+    def __init__(self, obstacles, frame):
+        self.obstacles, self.frame = obstacles, frame
+        self._cache: dict[float, tuple] = {}
 
-    closed = _closing(obstacles, r)
-    if closed.covers(shapely.Point(spawn)):
-        return True
-    return not _reaches_outside(_spawn_component(frame.difference(closed), spawn), frame)
+    def at(self, r: float):
+        key = round(r, 6)
+        if key not in self._cache:
+            closed = self.obstacles.buffer(r, quad_segs=8).buffer(-r, quad_segs=8) if r > 0 else self.obstacles
+            parts = _components(self.frame.difference(closed))
+            outside = next((c for c in parts if _reaches_outside(c, self.frame)), None)
+            self._cache[key] = (closed, parts, outside)
+        return self._cache[key]
 
+    def cut_off(self, point: tuple[float, float], r: float) -> bool:
+        import shapely
 
-def _critical_radius(obstacles, frame, spawn, r_max: float) -> float | None:
-    """Smallest closing radius (to :data:`WIDTH_TOLERANCE`/2) that cuts the spawn off; None beyond ``r_max``."""
-    lo, hi = 0.0, 0.05
-    while not _cut_off(obstacles, frame, spawn, hi):
-        lo, hi = hi, hi * 2
-        if lo >= r_max:
-            return None
-        hi = min(hi, r_max)
-    while hi - lo > WIDTH_TOLERANCE / 2:
-        mid = (lo + hi) / 2
-        if _cut_off(obstacles, frame, spawn, mid):
-            hi = mid
-        else:
-            lo = mid
-    return hi
+        outside = self.at(r)[2]
+        return outside is None or not outside.covers(shapely.Point(point))
+
+    def critical_radius(self, point) -> float | None:
+        """Smallest radius (to :data:`WIDTH_TOLERANCE`/2) that cuts ``point`` off; None up to MAX_GAP/2."""
+        lo, hi = 0.0, 0.05
+        while not self.cut_off(point, hi):
+            if hi >= MAX_GAP / 2:
+                return None
+            lo, hi = hi, min(hi * 2, MAX_GAP / 2)
+        while hi - lo > WIDTH_TOLERANCE / 2:
+            mid = (lo + hi) / 2
+            lo, hi = (lo, mid) if self.cut_off(point, mid) else (mid, hi)
+        return hi
 
 
 def _line_parts(geometry) -> list:
@@ -398,27 +396,83 @@ def _line_parts(geometry) -> list:
     return [g for g in shapely.get_parts(merged) if g.length > 0]
 
 
-def _gaps_at(obstacles, frame, spawn, r: float, prints: list[Footprint]):
-    """The gaps closed by a closing of radius ``r``, and the pieces that plug them."""
+@dataclass
+class _Way:
+    gap: Gap
+    plug: object           # the closing's piece that fills the gap
+    beyond: tuple | None   # a point just outside the gap's mouth
+
+
+def _gaps_at(scales: _Scales, point, r: float, prints: list[Footprint], came_from=None
+             ) -> tuple[list[_Way], bool]:
+    """The gaps between ``point``'s side and the outside at scale ``r``, and whether ``point`` lies in a free
+    region there (False: the closing swallowed it, as in a room missing a whole wall). ``came_from`` is the
+    point whose way out led here: its region does not count as this point's."""
     import shapely
 
-    point = shapely.Point(spawn)
-    closed = _closing(obstacles, r)
-    free = frame.difference(closed)
-    outside = next((c for c in _components(free) if _reaches_outside(c, frame)), None)
+    closed, parts, outside = scales.at(r)
     if outside is None:
-        return [], []
-    region = None if closed.covers(point) else _spawn_component(free, spawn)
-    gaps, plugs = [], []
-    for piece in _components(closed.difference(obstacles)):
-        between = piece.covers(point) if region is None else piece.distance(region) < 1e-7
+        return [], False
+    here = shapely.Point(point)
+    pieces = _components(closed.difference(scales.obstacles))
+    region = next((c for c in parts if c.covers(here)), None)
+    if region is None:   # the closing filled the point: the free region behind its fill piece, if any
+        holder = next((p for p in pieces if p.covers(here)), None)
+        back = shapely.Point(came_from) if came_from is not None else None
+        behind = [c for c in parts if c is not outside and holder is not None and holder.distance(c) < 1e-7
+                  and (back is None or not c.covers(back))]
+        region = max(behind, key=lambda c: c.area) if behind else None
+    ways = []
+    for piece in pieces:
+        between = piece.covers(here) if region is None else piece.distance(region) < 1e-7
         if not between or piece.distance(outside) > 1e-7:
             continue
         mouth = piece.boundary.intersection(outside.boundary.buffer(1e-7, quad_segs=1))
         for line in _line_parts(mouth):
-            gaps.append(_gap_from_mouth(line, prints))
-        plugs.append(piece)
-    return gaps, plugs
+            gap = _gap_from_mouth(line, prints)
+            ways.append(_Way(gap, piece, _beyond(gap, outside)))
+    return ways, region is not None
+
+
+def _beyond(gap: Gap, outside, step: float = 0.05):
+    """A point ``step`` m past the middle of the gap's mouth, on the outside."""
+    import shapely
+
+    (ax, ay), (bx, by) = gap.ends
+    length = math.hypot(bx - ax, by - ay)
+    if length < 1e-9:
+        return None
+    nx, ny = -(by - ay) / length, (bx - ax) / length
+    for sign in (1, -1):
+        q = (gap.centre[0] + sign * step * nx, gap.centre[1] + sign * step * ny)
+        if outside.covers(shapely.Point(q)):
+            return q
+    return None
+
+
+MAX_DEPTH = 3   # how far the search follows a way out into further enclosed regions
+
+
+def _ways_out(scales: _Scales, point, prints: list[Footprint], depth: int = 0, came_from=None):
+    """The ways out from ``point`` — ([_Way], point lies in a real region) — or None when nothing encloses it
+    at any scale up to MAX_GAP.
+
+    The narrowest cut between the point and the outside may lie inside the building (beside a free-standing
+    partition, say); when the far side of a gap is itself enclosed at a larger scale, the search follows it
+    outward and names that enclosure's ways out instead: the doors a person would name."""
+    r = scales.critical_radius(point)
+    if r is None:
+        return None
+    ways, real = _gaps_at(scales, point, r, prints, came_from)
+    out: list[_Way] = []
+    for way in ways:
+        if depth < MAX_DEPTH and way.beyond is not None:
+            further = _ways_out(scales, way.beyond, prints, depth + 1, came_from=point)
+            if further is not None and further[1] and further[0]:
+                out += further[0]
+                continue
+        out.append(way)
+    return out, real
 
 
 def _gap_from_mouth(line, prints: list[Footprint]) -> Gap:
@@ -455,32 +509,37 @@ def analyse(prints: list[Footprint], spawn: tuple[float, float], height: float) 
     nearest = min(p.geometry.distance(point) for p in prints)
     obstacles = obstacle_union(prints)
     frame = _frame(obstacles, spawn, MARGIN + MAX_GAP)
-    region = _spawn_component(frame.difference(obstacles), spawn)
-    if not _reaches_outside(region, frame):
+    scales = _Scales(obstacles, frame)
+    if scales.cut_off(spawn, 0.0):
+        region = next(c for c in scales.at(0.0)[1] if c.covers(point))
         return Enclosure(spawn, height, enclosed=True, region_area=region.area,
                          region_bounds=tuple(region.bounds), nearest=nearest)
-    rooms = _closed_regions(frame.difference(obstacles), frame, point)
+    rooms = _closed_regions(scales.at(0.0)[1], frame, point)
     gaps: list[Gap] = []
     for _ in range(MAX_GAP_ROUNDS):
-        r = _critical_radius(obstacles, frame, spawn, MAX_GAP / 2)
-        if r is None:
+        found = _ways_out(scales, spawn, prints)
+        if found is None:
             break
-        found, plugs = _gaps_at(obstacles, frame, spawn, r, prints)
-        gaps += found
-        if not plugs or any(p.covers(point) for p in plugs):
+        ways, real = found
+        new: list[_Way] = []
+        for way in ways:   # several cuts may lead out through the same gap
+            if all(math.dist(way.gap.centre, g.centre) > 0.05 for g in gaps + [w.gap for w in new]):
+                new.append(way)
+        gaps += [w.gap for w in new]
+        if not real or not new:
             break
-        obstacles = shapely.union_all([obstacles, *plugs])
-        if not _reaches_outside(_spawn_component(frame.difference(obstacles), spawn), frame):
+        scales = _Scales(shapely.union_all([scales.obstacles, *(w.plug for w in new)]), frame)
+        if scales.cut_off(spawn, 0.0):
             break
-    gaps.sort(key=lambda g: -g.width)
+    gaps.sort(key=lambda g: (-g.width, g.centre))
     return Enclosure(spawn, height, enclosed=False, gaps=tuple(gaps), nearest=nearest, rooms=rooms)
 
 
 ROOM_MIN_AREA = 0.25   # m²: closed pockets smaller than this (inside a pillar, between joined walls) are no rooms
 
 
-def _closed_regions(free, frame, point) -> tuple[tuple[float, float, float, float], ...]:
-    rooms = [c for c in _components(free) if not _reaches_outside(c, frame) and c.area >= ROOM_MIN_AREA]
+def _closed_regions(parts, frame, point) -> tuple[tuple[float, float, float, float], ...]:
+    rooms = [c for c in parts if not _reaches_outside(c, frame) and c.area >= ROOM_MIN_AREA]
     rooms.sort(key=lambda c: (c.distance(point), c.bounds))
     return tuple(tuple(round(v, 4) for v in c.bounds) for c in rooms)
 

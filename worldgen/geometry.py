@@ -154,6 +154,7 @@ class _Edge:
     room: str | None
     line: int | None
     openings: tuple[Opening, ...]
+    corners: tuple[tuple[int, int] | None, tuple[int, int] | None] = (None, None)   # (room, vertex) at p and q
 
 
 @dataclass
@@ -200,6 +201,7 @@ class _End:
     point: Point
     u: Point           # unit direction from the end into the wall's body
     half: float        # half thickness
+    corners: frozenset = frozenset()   # the (room, vertex) corners drawn at this end
 
 
 @dataclass
@@ -304,7 +306,7 @@ def obstacle_footprint(o: Obstacle) -> list[Point]:
 # -------------------------------------------------------------------------------------------- 1. merging
 def _edges(spec: Spec) -> list[_Edge]:
     edges: list[_Edge] = []
-    for room in spec.rooms:
+    for r, room in enumerate(spec.rooms):
         vs = room.vertices
         for i, p in enumerate(vs):
             q = vs[(i + 1) % len(vs)]
@@ -313,7 +315,8 @@ def _edges(spec: Spec) -> list[_Edge]:
                 _fail(spec, f"{label} has no length (vertices {i} and {(i + 1) % len(vs)} coincide)", room.line,
                       "remove the repeated vertex")
             edges.append(_Edge(p, q, room.style, len(edges), label, room.name, room.line,
-                               tuple(o for o in room.openings if o.wall == i)))
+                               tuple(o for o in room.openings if o.wall == i),
+                               ((r, i), (r, (i + 1) % len(vs)))))
         for o in room.openings:
             if not 0 <= o.wall < len(vs):
                 _fail(spec, f"room '{room.name}' has no wall {o.wall} (its walls are 0 to {len(vs) - 1})", o.line)
@@ -436,8 +439,15 @@ def _join(runs: list[_Run], spec: Spec) -> list[_Filler]:
     """Set every run's end extensions from what meets it there; return the filler boxes of sharp corners."""
     ends: list[_End] = []
     for k, r in enumerate(runs):
-        ends.append(_End(k, 0, r.at(r.u0), r.d, r.half))
-        ends.append(_End(k, 1, r.at(r.u1), (-r.d[0], -r.d[1]), r.half))
+        drawn: tuple[set, set] = (set(), set())
+        for e in r.edges:
+            for point, corner in zip((e.p, e.q), e.corners):
+                u = _dot(_sub(point, r.o), r.d)
+                for side, at in ((0, r.u0), (1, r.u1)):
+                    if corner is not None and abs(u - at) <= EPS:
+                        drawn[side].add(corner)
+        ends.append(_End(k, 0, r.at(r.u0), r.d, r.half, frozenset(drawn[0])))
+        ends.append(_End(k, 1, r.at(r.u1), (-r.d[0], -r.d[1]), r.half, frozenset(drawn[1])))
 
     # cluster end points closer than EPS (union-find over a fine grid)
     parent = list(range(len(ends)))
@@ -484,10 +494,12 @@ def _join(runs: list[_Run], spec: Spec) -> list[_Filler]:
 
 
 def _set(runs: list[_Run], end: _End, e: float) -> None:
+    """Let the box reach at least ``e`` past this end (an end may close two corners; the longer reach wins)."""
+    run = runs[end.run]
     if end.side == 0:
-        runs[end.run].e0 = e
+        run.e0 = max(run.e0, e)
     else:
-        runs[end.run].e1 = e
+        run.e1 = max(run.e1, e)
 
 
 def _stem(end: _End, walls: list[_Run]) -> float:
@@ -521,25 +533,39 @@ def _angle(u: Point) -> float:
 
 
 def _join_node(ends: list[_End], through: list[_Run], runs: list[_Run], spec: Spec) -> list[_Filler]:
-    if through:
-        for end in ends:
-            _set(runs, end, _stem(end, through))
-        return []
-    if len(ends) == 1:
+    """Set the reach of every wall end meeting at one point.
+
+    * Corners: two ends that a room draws as its corner (consecutive sides) are mitred. At a point on no other
+      wall and without such a room corner, the two ends on either side of a gap of 180° or more are (two
+      segments, or a room side and a segment, meeting end to end).
+    * An end on another wall's middle (a T-junction, or a room corner on a wall) also reaches into that wall,
+      up to its far face; an end beside a corner reaches into the corner's walls as far as it stays inside them.
+    * An end alone is free: it reaches half its thickness.
+    * Anything else ends at the point. That is enough: where no gap is 180° or more (a Y), every gap's facing
+      faces meet on both walls' bodies, so the polygon around the point is the union of triangles (point, gap
+      before wall k, gap after wall k), each inside wall k's band.
+    """
+    if len(ends) == 1 and not through:
         _set(runs, ends[0], ends[0].half)
         return []
     ends = sorted(ends, key=lambda e: (_angle(e.u), e.run, e.side))
-    gaps = [(_angle(ends[(i + 1) % len(ends)].u) - _angle(ends[i].u)) % (2 * math.pi) for i in range(len(ends))]
-    widest = max(range(len(ends)), key=lambda i: gaps[i])
-    if gaps[widest] >= math.pi - ANG_EPS:
-        left, right = ends[widest], ends[(widest + 1) % len(ends)]
-        fillers = _corner(left, right, runs, spec)
-        for end in ends:
-            if end is not left and end is not right:
-                _set(runs, end, _stem(end, [runs[left.run], runs[right.run]]))
-        return fillers
-    _star(ends, runs)
-    return []
+    pairs = [(a, b) for i, a in enumerate(ends) for b in ends[i + 1:] if a.corners & b.corners]
+    if not pairs and not through:
+        gaps = [(_angle(ends[(i + 1) % len(ends)].u) - _angle(ends[i].u)) % (2 * math.pi) for i in range(len(ends))]
+        widest = max(range(len(ends)), key=lambda i: gaps[i])
+        if gaps[widest] >= math.pi - ANG_EPS:
+            pairs = [(ends[widest], ends[(widest + 1) % len(ends)])]
+    fillers: list[_Filler] = []
+    for a, b in pairs:
+        outside_from_a = (_angle(b.u) - _angle(a.u)) % (2 * math.pi) >= math.pi
+        fillers += _corner(a, b, runs, spec) if outside_from_a else _corner(b, a, runs, spec)
+    paired = [e for pair in pairs for e in pair]
+    for end in ends:
+        if through:
+            _set(runs, end, _stem(end, through))
+        elif end not in paired:
+            _set(runs, end, _stem(end, [runs[e.run] for e in paired]) if paired else 0.0)
+    return fillers
 
 
 def _corner(left: _End, right: _End, runs: list[_Run], spec: Spec) -> list[_Filler]:
@@ -604,39 +630,6 @@ def _spike_strips(m: Point, f: Point, g: Point, alpha: float, rho: float) -> lis
             return strips
         reach = r + _FILLER_OVERLAP
         r /= q
-
-
-def _star(ends: list[_End], runs: list[_Run]) -> None:
-    """Three or more ends around a point with no gap of 180° or more: each box reaches across the core polygon
-    (the points where neighbouring walls' facing faces meet) as far as it lies within the wall's width."""
-    o = ends[0].point
-    core: list[Point] = []
-    for i, a in enumerate(ends):
-        b = ends[(i + 1) % len(ends)]
-        p = _add(o, _left(a.u), a.half)
-        q = _add(o, _left(b.u), -b.half)
-        hit = _meet(p, a.u, q, b.u)
-        core.append(_add(p, a.u, hit[0]) if hit else o)
-    for end in ends:
-        n = _left(end.u)
-        poly = _clip(core, o, n, end.half)
-        poly = _clip(poly, o, (-n[0], -n[1]), end.half)
-        reach = max((-_dot(_sub(p, o), end.u) for p in poly), default=end.half)
-        _set(runs, end, max(0.0, reach))
-
-
-def _clip(poly: list[Point], o: Point, n: Point, h: float) -> list[Point]:
-    """The part of polygon ``poly`` where (p − o)·n ≤ h (Sutherland–Hodgman against one half-plane)."""
-    out: list[Point] = []
-    for i, p in enumerate(poly):
-        q = poly[(i + 1) % len(poly)]
-        dp, dq = _dot(_sub(p, o), n) - h, _dot(_sub(q, o), n) - h
-        if dp <= 0:
-            out.append(p)
-        if (dp < 0 < dq) or (dq < 0 < dp):
-            t = dp / (dp - dq)
-            out.append((p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])))
-    return out
 
 
 # ----------------------------------------------------------------------------------------------- 4. walls

@@ -25,6 +25,7 @@ Point = tuple[float, float]
 WALL = "#"
 FREE = frozenset(". ")
 ROBOT_HEADINGS = {"R": 0.0, ">": 0.0, "^": math.pi / 2, "<": math.pi, "v": -math.pi / 2}
+POST_PREFIX = "grid_post_"   # a lone cell's post is the obstacle named grid_post_ROW_COLUMN (from 1)
 LEGEND = "use # for a wall, . or space for free floor, R or > ^ < v for the robot and its heading"
 
 

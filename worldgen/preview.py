@@ -18,6 +18,7 @@ from pathlib import Path
 from typing import Sequence
 
 from .errors import InputError
+from .grid import POST_PREFIX
 from .scene import Scene
 from .spec import Spec, load_spec
 
@@ -81,7 +82,8 @@ def spec_picture(spec: Spec) -> Picture:
     text = world_sdf(building)
     scene = read_world_text(text, source=spec.source)
     spawn = Spawn(spec.robot.at[0], spec.robot.at[1], spec.robot.yaw, spec.robot.model) if spec.robot else None
-    walls = frozenset(s.label for s in scene.shapes if s.model == building.name)
+    walls = frozenset(s.label for s in scene.shapes
+                      if s.model == building.name or s.model.startswith(POST_PREFIX))   # a grid's posts are walls
     return Picture(scene, spec.name, _short(Path(spec.source).name) if spec.source else "",
                    opening_marks(building), spawn, walls, world_text=text)
 

@@ -102,6 +102,8 @@ def _row(r: Result) -> list[str]:
     m = r.metrics
     enclosed = m.get("enclosed")
     enclosed_text = {True: "yes", False: "NO", None: "–"}[enclosed] if "enclosed" in m else "–"
+    if enclosed is False and m.get("robot_enclosed"):
+        enclosed_text = "leaks"   # the robot is held in, the LiDAR's beams are not
     if m.get("spawn_inside"):
         enclosed_text = "in wall"
     verdict = "FAIL" if not r.ok else ("warn" if any(f.severity == "warning" for f in r.findings) else "ok")

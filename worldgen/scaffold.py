@@ -163,10 +163,12 @@ def package_xml(req: PackageRequest, gazebo: bool = False) -> str:
 def cmakelists(req: PackageRequest, data_dirs: Sequence[str] = (), scripts: Sequence[str] = ()) -> str:
     """CMakeLists.txt in catkin's skeleton shape; ``data_dirs`` are installed to the package's share folder and
     ``scripts`` (package-relative paths) through catkin_install_python."""
+    # message_runtime is needed at run time only (not by find_package); message_generation at build time only
+    components = [d for d in req.catkin_deps if d != "message_runtime"]
     export = [d for d in req.catkin_deps if d not in ("genmsg", "message_generation")]
     system_includes = [d for d in req.system_deps if d != "boost" and not d.lower().startswith("python-")]
     text = render_template("package/CMakeLists.txt.j2", name=req.name, meta=req.meta,
-                           catkin_deps=req.catkin_deps, boost_comps=req.boost_comps,
+                           catkin_deps=components, boost_comps=req.boost_comps,
                            system_deps=[d for d in req.system_deps if d != "boost"], export_deps=export,
                            system_includes=system_includes, scripts=list(scripts), data_dirs=list(data_dirs))
     return text.rstrip("\n") + "\n"

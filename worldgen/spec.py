@@ -20,7 +20,7 @@ from typing import Literal, NoReturn
 import yaml
 
 from .errors import SpecError
-from .grid import plan_grid
+from .grid import POST_PREFIX, plan_grid
 
 Point = tuple[float, float]
 
@@ -217,7 +217,7 @@ def check_name(name: object, what: str, *, path: str | None = None, line: int | 
 
 def _suggest_name(name: str) -> str:
     cleaned = re.sub(r"[^A-Za-z0-9_]+", "_", name).strip("_") or "my_world"
-    return cleaned if cleaned[0].isalpha() else f"w_{cleaned}"
+    return (cleaned if cleaned[0].isalpha() else f"w_{cleaned}")[:NAME_MAX]
 
 
 def _describe(value: object) -> str:
@@ -752,7 +752,7 @@ class _Reader:
         plan = plan_grid(rows, cell, origin, source=self.source, row_lines=row_lines)
         segments = [Segment(start=a, end=b, style=style, line=line) for a, b in plan.walls]
         posts = [Obstacle(shape="box", at=at, size=(cell, cell, style.height), material=style.material,
-                          name=f"grid_post_{r + 1}_{c + 1}", line=row_lines[r]) for r, c, at in plan.posts]
+                          name=f"{POST_PREFIX}{r + 1}_{c + 1}", line=row_lines[r]) for r, c, at in plan.posts]
         return segments, posts, plan.robot
 
     def grid_file(self, text: str, stem: str) -> Spec:

@@ -27,7 +27,8 @@ SIM_TIMEOUT = 300.0   # s of wall time for all runs together
 @click.option("--kp", type=float, multiple=True,
               help="Proportional gain (repeat for several runs on one plot). Default 0.5.")
 @click.option("--ki", type=float, multiple=True, help="Integral gain (once for all runs, or once per run). Default 0.")
-@click.option("--kd", type=float, multiple=True, help="Derivative gain (once for all runs, or once per run). Default 0.")
+@click.option("--kd", type=float, multiple=True,
+              help="Derivative gain (once for all runs, or once per run). Default 0.")
 @click.option("--duration", type=click.FloatRange(min=0.1, max=600), default=None, metavar="S",
               help="Simulated seconds per run. Default: 20 for stop-at-wall, one full turn for spin.")
 @click.option("--max-speed", type=click.FloatRange(min=0.01, max=1.0), default=0.22, show_default=True,
@@ -36,6 +37,8 @@ SIM_TIMEOUT = 300.0   # s of wall time for all runs together
               help="Spin: turn rate (rad/s; burger at most 2.84, waffle 1.82).")
 @click.option("--rate", type=click.Choice(["5", "30"]), default="5", show_default=True,
               help="Stop-at-wall: control loop rate in Hz (the LiDAR's 5 Hz or the drive's 30 Hz).")
+@click.option("--front-angle", type=click.FloatRange(min=0.0, max=90.0), default=10.0, show_default=True,
+              metavar="DEG", help="Stop-at-wall: the front distance is the nearest beam within ±DEG of ahead.")
 @click.option("--tolerance", type=click.FloatRange(min=0.0), default=0.05, show_default=True,
               help="Stop-at-wall: the run passes when it ends within this of the target (m).")
 @click.option("--lidar-no-hit", type=click.Choice(["inf", "zero"]), default="inf", show_default=True,
@@ -48,8 +51,8 @@ SIM_TIMEOUT = 300.0   # s of wall time for all runs together
               help="Write the time series as CSV.")
 @click.option("--force", is_flag=True, help="Overwrite existing --plot/--csv files.")
 @click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True)
-def drive(world, behaviour, robot, spawn, target, kp, ki, kd, duration, max_speed, omega, rate, tolerance,
-          lidar_no_hit, model_paths, plot, csv_path, force, fmt):
+def drive(world, behaviour, robot, spawn, target, kp, ki, kd, duration, max_speed, omega, rate, front_angle,
+          tolerance, lidar_no_hit, model_paths, plot, csv_path, force, fmt):
     """Run a sensory-motor exercise in WORLD (a .world/.sdf file or a floorplan spec) and report it.
 
     stop-at-wall drives toward the wall ahead with v = kp·e + ki·∫e + kd·de/dt (e = front LiDAR distance −
@@ -77,7 +80,7 @@ def drive(world, behaviour, robot, spawn, target, kp, ki, kd, duration, max_spee
         "world": str(world), "kind": "spec" if kind == "spec" else "world", "behaviour": behaviour,
         "robot": _robot_arg(robot), "spawn": list(parse_spawn(spawn)) if spawn is not None else None,
         "gains": gain_sets(kp, ki, kd), "target": target, "duration": duration, "max_speed": max_speed,
-        "omega": omega, "rate": float(rate), "no_hit": lidar_no_hit, "tolerance": tolerance,
+        "omega": omega, "rate": float(rate), "front_angle": front_angle, "no_hit": lidar_no_hit, "tolerance": tolerance,
         "model_paths": [str(p) for p in model_paths]}
     result = run_isolated("worldgen.sim.exercise:drive_exercise", request, timeout=SIM_TIMEOUT)
     files = {}
@@ -120,9 +123,11 @@ def gain_sets(kp: tuple, ki: tuple, kd: tuple) -> list[dict]:
 
 
 def _summary(result: dict) -> dict:
-    """The JSON report: everything but the time series (those go to --csv)."""
+    """The JSON report: everything but the time series (those go to --csv) and the wall-clock time (so the same
+    run gives the same report)."""
     runs = [{k: v for k, v in run.items() if k != "series"} for run in result["runs"]]
-    return {**result, "runs": runs, "ok": all(run["ok"] for run in runs)}
+    return {**{k: v for k, v in result.items() if k != "wall_seconds"}, "runs": runs,
+            "ok": all(run["ok"] for run in runs)}
 
 
 def _finite(value):

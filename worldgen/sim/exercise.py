@@ -40,12 +40,13 @@ def load_world(path: str, kind: str = "world", model_paths=()) -> tuple[Scene, d
 def drive_exercise(world: str, kind: str = "world", behaviour: str = "stop-at-wall", robot: str | None = None,
                    spawn: list[float] | None = None, gains: list[dict] | None = None, target: float = 0.5,
                    duration: float | None = None, max_speed: float = 0.22, omega: float = 1.0, rate: float = 5.0,
-                   no_hit: str = "inf", tolerance: float = 0.05, band: float = 0.02, model_paths=(),
-                   seed: int = 0) -> dict:
+                   front_angle: float = 10.0, no_hit: str = "inf", tolerance: float = 0.05, band: float = 0.02,
+                   model_paths=(), seed: int = 0) -> dict:
     """Run ``behaviour`` in ``world`` and return what happened: the robot and spawn pose used (and where they
     came from), one result per gain set (spin: one run), simulated and wall-clock seconds.
 
     Robot and spawn pose: the arguments when given, else the spec's ``robot`` entry, else burger at the origin.
+    ``front_angle`` (degrees) is the half-width of the cone whose nearest beam is the front distance.
     """
     from .behaviours import settle, spin, stop_at_wall
     from .session import Session
@@ -70,7 +71,8 @@ def drive_exercise(world: str, kind: str = "world", behaviour: str = "stop-at-wa
             else:
                 result = stop_at_wall(session, target=target, kp=gain.get("kp", 0.0), ki=gain.get("ki", 0.0),
                                       kd=gain.get("kd", 0.0), duration=duration or DEFAULT_DURATION[behaviour],
-                                      max_speed=max_speed, rate=rate, band=band, tolerance=tolerance)
+                                      max_speed=max_speed, rate=rate, half_angle=math.radians(front_angle),
+                                      band=band, tolerance=tolerance)
             runs.append({**result.to_dict(), "settle": rest.to_dict()})
             sim_seconds += session.t
     return {"world": world, "behaviour": behaviour, "robot": robot_used, "spawn": spawn_used,

@@ -131,22 +131,26 @@ class Session:
             with os.fdopen(fd, "w", encoding="utf-8") as fh:
                 fh.write(text)
             try:
+                # Inertias as written (not recomputed from the shapes), and true cylinders for the wheels:
+                # pybullet otherwise turns them into polygonal hulls that bump along at low speed.
                 robot = pb.loadURDF(path, [x, y, 0.0], pb.getQuaternionFromEuler([0, 0, yaw]),
-                                    flags=pb.URDF_USE_INERTIA_FROM_FILE | pb.URDF_USE_IMPLICIT_CYLINDER, physicsClientId=self.client)
+                                    flags=pb.URDF_USE_INERTIA_FROM_FILE | pb.URDF_USE_IMPLICIT_CYLINDER,
+                                    physicsClientId=self.client)
             except pb.error as err:
                 raise InputError(f"pybullet cannot load the robot description ({err})", path=source,
                                  hint="check that every collision mesh file exists") from None
         finally:
             os.unlink(path)
+        # pybullet numbers each joint as its child link; the root link is -1
         self.link_index = {pb.getBodyInfo(robot, physicsClientId=self.client)[0].decode(): -1}
-        movable = []
+        joint_index, movable = {}, []
         for j in range(pb.getNumJoints(robot, physicsClientId=self.client)):
             info = pb.getJointInfo(robot, j, physicsClientId=self.client)
             self.link_index[info[12].decode()] = j
-            self.link_index.setdefault(f"joint:{info[1].decode()}", j)
+            joint_index[info[1].decode()] = j
             if info[2] != pb.JOINT_FIXED:
                 movable.append(j)
-        self.link_name = {i: n for n, i in self.link_index.items() if not n.startswith("joint:")}
+        self.link_name = {i: n for n, i in self.link_index.items()}
         # Damping is per multibody (and, passed with a link index, pybullet drops the whole call): Gazebo has none.
         pb.changeDynamics(robot, -1, linearDamping=0.0, angularDamping=0.0, physicsClientId=self.client)
         for index, name in self.link_name.items():
@@ -154,7 +158,7 @@ class Session:
                               physicsClientId=self.client)
             pb.setCollisionFilterGroupMask(robot, index, ROBOT_GROUP, ROBOT_MASK, physicsClientId=self.client)
         drive = self.profile.drive
-        self.wheels = (self.link_index[f"joint:{drive.left_joint}"], self.link_index[f"joint:{drive.right_joint}"])
+        self.wheels = (joint_index[drive.left_joint], joint_index[drive.right_joint])
         for j in movable:  # joints without a controller turn freely, as in Gazebo
             pb.setJointMotorControl2(robot, j, pb.VELOCITY_CONTROL, targetVelocity=0.0,
                                      force=drive.torque if j in self.wheels else 0.0, physicsClientId=self.client)
@@ -274,13 +278,19 @@ def _spawn_pose(spawn) -> tuple[float, float, float]:
 def _collision_urdf(urdf: str, source: Path) -> str:
     """The URDF as pybullet should load it: no visuals and no <gazebo> blocks (DIRECT mode renders nothing, and
     a missing visual mesh would fail the whole load), mesh paths absolute (package://, file:// and paths
-    relative to the description's own folder)."""
+    relative to the description's own folder), and a tiny inertial on every link that has none — pybullet
+    would give such a frame link 1 kg, Gazebo drops it (turtlebot3_description's base_footprint, imu_link and
+    camera frames have none)."""
     root = ET.fromstring(urdf)
     for gazebo in root.findall("gazebo"):
         root.remove(gazebo)
     for link in root.findall("link"):
         for visual in link.findall("visual"):
             link.remove(visual)
+        if link.find("inertial") is None:
+            inertial = ET.SubElement(link, "inertial")
+            ET.SubElement(inertial, "mass", value="1e-05")
+            ET.SubElement(inertial, "inertia", ixx="1e-09", ixy="0", ixz="0", iyy="1e-09", iyz="0", izz="1e-09")
         for mesh in link.iter("mesh"):
             name = absolute_mesh_paths(mesh.get("filename", ""), source)
             if name and not os.path.isabs(name):
