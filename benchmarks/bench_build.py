@@ -10,7 +10,6 @@ peak memory (max RSS) of each run's process. Targets: class room < 0.3 s, 400 ro
 from __future__ import annotations
 
 import argparse
-import resource
 import shutil
 import statistics
 import subprocess
@@ -70,12 +69,12 @@ def one_run(spec: Path, out: Path) -> tuple[float, int]:
 def measure(name: str, text: str, runs: int, tmp: Path) -> bool:
     spec = tmp / f"{name.replace(' ', '_')}.yaml"
     spec.write_text(text)
-    out = tmp / "out"
+    out = tmp / name.replace(' ', '_')
     one_run(spec, out)   # warm the file cache and the bytecode
     results = [one_run(spec, out) for _ in range(runs)]
     wall = statistics.median(r[0] for r in results)
     rss = max(r[1] for r in results) / 1024
-    world = next(out.glob("*.world"))
+    (world,) = out.glob("*.world")
     target = TARGETS[name]
     ok = wall < target
     print(f"{name:11s}  wall {wall:6.3f} s (median of {runs}, target < {target:g} s: {'ok' if ok else 'MISSED'})"

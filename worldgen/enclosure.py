@@ -347,11 +347,13 @@ def _reaches_outside(component, frame) -> bool:
     return component is not None and component.exterior.distance(frame.exterior) < 1e-9
 
 
-class _Scales:
-    """One obstacle set closed at various radii (cached): what stays free, and which part of it is outside.
+class _Space:
+    """Where the centre of a disc of radius ``r`` can be (the free space shrunk by ``r``), per radius (cached),
+    and which part of it is the outside (the part touching the frame).
 
-    Closing with radius ``r`` plugs every opening narrower than ``2·r``; the free component touching the frame
-    is the outside at that scale. A point is cut off at scale ``r`` when it is not in that outside.
+    A disc of radius ``r`` passes an opening exactly when the opening is wider than ``2·r``, whatever the walls'
+    thickness, so the radius at which a point is cut off from the outside measures the widest way out. A point
+    is reached from the outside at radius ``r`` when an outside disc covers it.
     """
 
     def __init__(self, obstacles, frame):
@@ -361,20 +363,22 @@ class _Scales:
     def at(self, r: float):
         key = round(r, 6)
         if key not in self._cache:
-            closed = self.obstacles.buffer(r, quad_segs=8).buffer(-r, quad_segs=8) if r > 0 else self.obstacles
-            parts = _components(self.frame.difference(closed))
+            grown = self.obstacles.buffer(r, quad_segs=8) if r > 0 else self.obstacles
+            parts = _components(self.frame.difference(grown))
             outside = next((c for c in parts if _reaches_outside(c, self.frame)), None)
-            self._cache[key] = (closed, parts, outside)
+            self._cache[key] = (parts, outside)
         return self._cache[key]
 
     def cut_off(self, point: tuple[float, float], r: float) -> bool:
         import shapely
 
-        outside = self.at(r)[2]
-        return outside is None or not outside.covers(shapely.Point(point))
+        outside = self.at(r)[1]
+        return outside is None or outside.distance(shapely.Point(point)) > r + 1e-9
 
     def critical_radius(self, point) -> float | None:
         """Smallest radius (to :data:`WIDTH_TOLERANCE`/2) that cuts ``point`` off; None up to MAX_GAP/2."""
+        if self.cut_off(point, 0.0):
+            return 0.0
         lo, hi = 0.0, 0.05
         while not self.cut_off(point, hi):
             if hi >= MAX_GAP / 2:
@@ -385,57 +389,76 @@ class _Scales:
             lo, hi = (lo, mid) if self.cut_off(point, mid) else (mid, hi)
         return hi
 
+    def plugged(self, plug) -> _Space:
+        import shapely
 
-def _line_parts(geometry) -> list:
-    import shapely
-
-    lines = [g for g in shapely.get_parts(geometry) if g.geom_type in ("LineString", "MultiLineString")]
-    if not lines:
-        return []
-    merged = shapely.line_merge(shapely.union_all(lines))
-    return [g for g in shapely.get_parts(merged) if g.length > 0]
+        return _Space(shapely.union_all([self.obstacles, plug]), self.frame)
 
 
 @dataclass
 class _Way:
     gap: Gap
-    plug: object           # the closing's piece that fills the gap
-    beyond: tuple | None   # a point just outside the gap's mouth
+    plug: object                 # a thin bar across the gap that closes it
+    beyond: tuple | None         # a point just past the gap, on the outside
+    real: bool                   # the point it was found for lies in a region a disc of that size can be in
 
 
-def _gaps_at(scales: _Scales, point, r: float, prints: list[Footprint], came_from=None
-             ) -> tuple[list[_Way], bool]:
-    """The gaps between ``point``'s side and the outside at scale ``r``, and whether ``point`` lies in a free
-    region there (False: the closing swallowed it, as in a room missing a whole wall). ``came_from`` is the
-    point whose way out led here: its region does not count as this point's."""
+def _neck(space: _Space, point: tuple[float, float], r: float, prints: list[Footprint]) -> _Way | None:
+    """The narrowest place between ``point`` and the outside, just past the radius ``r`` that cut it off:
+    where the point's side and the outside (as disc centres) come closest. Its ends are the nearest wall
+    points on either side of it."""
     import shapely
+    from shapely.ops import nearest_points
 
-    closed, parts, outside = scales.at(r)
+    parts, outside = space.at(r)
     if outside is None:
-        return [], False
+        return None
     here = shapely.Point(point)
-    pieces = _components(closed.difference(scales.obstacles))
-    region = next((c for c in parts if c.covers(here)), None)
-    if region is None:   # the closing filled the point: the free region behind its fill piece, if any
-        holder = next((p for p in pieces if p.covers(here)), None)
-        back = shapely.Point(came_from) if came_from is not None else None
-        behind = [c for c in parts if c is not outside and holder is not None and holder.distance(c) < 1e-7
-                  and (back is None or not c.covers(back))]
-        region = max(behind, key=lambda c: c.area) if behind else None
-    ways = []
-    for piece in pieces:
-        between = piece.covers(here) if region is None else piece.distance(region) < 1e-7
-        if not between or piece.distance(outside) > 1e-7:
-            continue
-        mouth = piece.boundary.intersection(outside.boundary.buffer(1e-7, quad_segs=1))
-        for line in _line_parts(mouth):
-            gap = _gap_from_mouth(line, prints)
-            ways.append(_Way(gap, piece, _beyond(gap, outside)))
-    return ways, region is not None
+    side = [c for c in parts if c is not outside and c.distance(here) <= r + 1e-9]
+    if side:
+        a, x = nearest_points(shapely.union_all(side), outside)
+        neck = ((a.x + x.x) / 2, (a.y + x.y) / 2)
+    else:   # no disc of that size fits on the point's side at all (a room missing a whole wall)
+        a, x = here, nearest_points(here, outside)[1]
+        neck = (x.x, x.y)
+    ends = _gap_ends(space.obstacles, neck, (x.x - a.x, x.y - a.y))
+    if ends is None:
+        return None
+    e1, e2 = ends
+    gap = _gap_between(e1, e2, prints)
+    plug = shapely.LineString([e1, e2]).buffer(2 * SLIVER, quad_segs=1)
+    return _Way(gap, plug, _beyond(space, gap, (x.x - a.x, x.y - a.y)), bool(side))
 
 
-def _beyond(gap: Gap, outside, step: float = 0.05):
-    """A point ``step`` m past the middle of the gap's mouth, on the outside."""
+def _gap_ends(obstacles, neck, outward):
+    """The wall point nearest the neck, and the nearest one on the other side of the neck from it."""
+    import shapely
+    from shapely.ops import nearest_points
+
+    n = shapely.Point(neck)
+    e1 = nearest_points(obstacles, n)[0]
+    ux, uy = e1.x - n.x, e1.y - n.y
+    length = math.hypot(ux, uy)
+    if length < 1e-9:   # the neck touches a wall: look across, perpendicular to the way out
+        ux, uy, length = -outward[1], outward[0], math.hypot(*outward)
+        if length < 1e-9:
+            return None
+    ux, uy = ux / length, uy / length
+    far = 4 * MAX_GAP   # the half-plane beyond the neck, away from e1
+    px, py = -uy, ux
+    half = shapely.Polygon([(n.x - ux * 1e-6 + px * far, n.y - uy * 1e-6 + py * far),
+                            (n.x - ux * 1e-6 - px * far, n.y - uy * 1e-6 - py * far),
+                            (n.x - ux * far - px * far, n.y - uy * far - py * far),
+                            (n.x - ux * far + px * far, n.y - uy * far + py * far)])
+    other = obstacles.intersection(half)
+    if other.is_empty:
+        return None
+    e2 = nearest_points(other, n)[0]
+    return (e1.x, e1.y), (e2.x, e2.y)
+
+
+def _beyond(space: _Space, gap: Gap, outward, step: float = 0.05):
+    """A free point ``step`` m past the gap, on its outside."""
     import shapely
 
     (ax, ay), (bx, by) = gap.ends
@@ -443,56 +466,47 @@ def _beyond(gap: Gap, outside, step: float = 0.05):
     if length < 1e-9:
         return None
     nx, ny = -(by - ay) / length, (bx - ax) / length
-    for sign in (1, -1):
-        q = (gap.centre[0] + sign * step * nx, gap.centre[1] + sign * step * ny)
-        if outside.covers(shapely.Point(q)):
-            return q
-    return None
+    if nx * outward[0] + ny * outward[1] < 0:
+        nx, ny = -nx, -ny
+    q = (gap.centre[0] + step * nx, gap.centre[1] + step * ny)
+    return None if space.obstacles.covers(shapely.Point(q)) else q
 
 
 MAX_DEPTH = 3   # how far the search follows a way out into further enclosed regions
 
 
-def _ways_out(scales: _Scales, point, prints: list[Footprint], depth: int = 0, came_from=None):
-    """The ways out from ``point`` — ([_Way], point lies in a real region) — or None when nothing encloses it
-    at any scale up to MAX_GAP.
+def _way_out(space: _Space, point, prints: list[Footprint], depth: int = 0) -> _Way | None:
+    """The widest way out from ``point``, or None when nothing encloses it at any scale up to MAX_GAP.
 
     The narrowest cut between the point and the outside may lie inside the building (beside a free-standing
-    partition, say); when the far side of a gap is itself enclosed at a larger scale, the search follows it
-    outward and names that enclosure's ways out instead: the doors a person would name."""
-    r = scales.critical_radius(point)
-    if r is None:
+    partition, say). When the far side of that cut is itself a region closed at a larger scale (a disc of that
+    size fits in it and cannot get out), the search closes the cut and follows that region's way out instead:
+    the door a person would name."""
+    r = space.critical_radius(point)
+    if not r:
         return None
-    ways, real = _gaps_at(scales, point, r, prints, came_from)
-    out: list[_Way] = []
-    for way in ways:
-        if depth < MAX_DEPTH and way.beyond is not None:
-            further = _ways_out(scales, way.beyond, prints, depth + 1, came_from=point)
-            if further is not None and further[1] and further[0]:
-                out += further[0]
-                continue
-        out.append(way)
-    return out, real
+    way = _neck(space, point, r, prints)
+    if way is None:
+        return None
+    if depth < MAX_DEPTH and way.beyond is not None:
+        further = _way_out(space.plugged(way.plug), way.beyond, prints, depth + 1)
+        if further is not None and further.real:
+            return further
+    return way
 
 
-def _gap_from_mouth(line, prints: list[Footprint]) -> Gap:
+def _gap_between(e1, e2, prints: list[Footprint]) -> Gap:
     import shapely
 
-    coords = list(line.coords)
-    a, b = coords[0], coords[-1]
-    chord = math.dist(a, b)
-    if chord > 1e-6:      # the ends sit on the walls either side; between them is the way out
-        centre, width = ((a[0] + b[0]) / 2, (a[1] + b[1]) / 2), chord
-    else:                 # a closed mouth (the gap runs all round): its middle and its length
-        mid = line.interpolate(0.5, normalized=True)
-        centre, width = (mid.x, mid.y), line.length
+    e1, e2 = sorted([(round(e1[0], 6), round(e1[1], 6)), (round(e2[0], 6), round(e2[1], 6))])
     between = []
-    for end in (a, b):
+    for end in (e1, e2):
         p = shapely.Point(end)
         near = min(prints, key=lambda f: f.geometry.distance(p), default=None)
         if near is not None and near.label not in between and near.geometry.distance(p) < 0.01:
             between.append(near.label)
-    return Gap(centre=centre, width=width, ends=(a[:2], b[:2]), between=tuple(between))
+    return Gap(centre=((e1[0] + e2[0]) / 2, (e1[1] + e2[1]) / 2), width=math.dist(e1, e2), ends=(e1, e2),
+               between=tuple(between))
 
 
 def analyse(prints: list[Footprint], spawn: tuple[float, float], height: float) -> Enclosure:
@@ -509,29 +523,21 @@ def analyse(prints: list[Footprint], spawn: tuple[float, float], height: float) 
     nearest = min(p.geometry.distance(point) for p in prints)
     obstacles = obstacle_union(prints)
     frame = _frame(obstacles, spawn, MARGIN + MAX_GAP)
-    scales = _Scales(obstacles, frame)
-    if scales.cut_off(spawn, 0.0):
-        region = next(c for c in scales.at(0.0)[1] if c.covers(point))
+    space = _Space(obstacles, frame)
+    if space.cut_off(spawn, 0.0):
+        region = next(c for c in space.at(0.0)[0] if c.covers(point))
         return Enclosure(spawn, height, enclosed=True, region_area=region.area,
                          region_bounds=tuple(region.bounds), nearest=nearest)
-    rooms = _closed_regions(scales.at(0.0)[1], frame, point)
+    rooms = _closed_regions(space.at(0.0)[0], frame, point)
     gaps: list[Gap] = []
-    for _ in range(MAX_GAP_ROUNDS):
-        found = _ways_out(scales, spawn, prints)
-        if found is None:
+    for _ in range(MAX_GAP_ROUNDS):   # name the widest way out, close it, look again
+        way = _way_out(space, spawn, prints)
+        if way is None or any(math.dist(way.gap.centre, g.centre) < 0.01 for g in gaps):
             break
-        ways, real = found
-        new: list[_Way] = []
-        for way in ways:   # several cuts may lead out through the same gap
-            if all(math.dist(way.gap.centre, g.centre) > 0.05 for g in gaps + [w.gap for w in new]):
-                new.append(way)
-        gaps += [w.gap for w in new]
-        if not real or not new:
+        gaps.append(way.gap)
+        space = space.plugged(way.plug)
+        if space.cut_off(spawn, 0.0):
             break
-        scales = _Scales(shapely.union_all([scales.obstacles, *(w.plug for w in new)]), frame)
-        if scales.cut_off(spawn, 0.0):
-            break
-    gaps.sort(key=lambda g: (-g.width, g.centre))
     return Enclosure(spawn, height, enclosed=False, gaps=tuple(gaps), nearest=nearest, rooms=rooms)
 
 

@@ -98,8 +98,7 @@ def parse_node(text: str) -> NodeRef:
     if not slash or not _PKG_REF.match(package) or not _NODE_TYPE.match(node_type):
         raise InputError(f"bad --node value {text!r}", hint=hint)
     if not name:
-        stem = node_type.split(".")[0] if not node_type.startswith(".") else node_type
-        name = re.sub(r"[^A-Za-z0-9_]", "_", stem)
+        name = re.sub(r"[^A-Za-z0-9_]", "_", node_type.split(".")[0])
         if not name[:1].isalpha():
             name = "node_" + name
     if not _NODE_NAME.match(name):
@@ -489,13 +488,11 @@ def _owning_package(path: Path) -> Path | None:
 
 
 def _source_tree(package_dir: Path) -> Path:
-    """The catkin source space holding ``package_dir``: the nearest ancestor named ``src`` or holding a top-level
-    ``CMakeLists.txt``, else the package's parent folder."""
-    for parent in package_dir.parents:
+    """The catkin source space holding ``package_dir``: the nearest of its three closest ancestors that is named
+    ``src`` or holds a top-level ``CMakeLists.txt`` (and is no package), else the package's parent folder."""
+    for parent in list(package_dir.parents)[:3]:
         if parent.name == "src" or ((parent / "CMakeLists.txt").exists() and not (parent / "package.xml").exists()):
             return parent
-        if parent == package_dir.parent.parent.parent:   # do not wander far up the file system
-            break
     return package_dir.parent
 
 
@@ -548,8 +545,9 @@ class _Scope:
 
 
 class _Reader:
+    """Evaluates launch files into one :class:`LaunchInfo`, following includes."""
+
     def __init__(self, top: Path, finder: PackageFinder, environ: Mapping[str, str]):
-        self.top = top
         self.finder = finder
         self.environ = environ
         self.info = LaunchInfo(path=top)
@@ -734,7 +732,7 @@ class _Reader:
             if isinstance(child.tag, str) and child.tag == "arg" and child.get("name") and self.condition(child, scope):
                 passed[child.get("name")] = self._try(child.get("value", child.get("default", "")), scope)
         if "world_name" in passed and self.info.world_ref is None:
-            self.world(passed["world_name"], child_line(el, "world_name"), scope)
+            self.world(passed["world_name"], _child_line(el, "world_name"), scope)
         ns = _join_ns(scope.ns, self._try_str(el.get("ns") or "", scope))
         try:
             target = Path(self.expand(raw, scope, find=True))
@@ -825,7 +823,7 @@ class _Reader:
         return found.group(1) if found else None
 
 
-def child_line(el, arg_name: str) -> int | None:
+def _child_line(el, arg_name: str) -> int | None:
     for child in el:
         if isinstance(child.tag, str) and child.tag == "arg" and child.get("name") == arg_name:
             return child.sourceline
@@ -847,30 +845,29 @@ def read_launch(path: str | Path, args: Mapping[str, str] | None = None, *,
     ``args`` are command-line overrides (``x_pos:=1.5`` → ``{"x_pos": "1.5"}``); ``ros_package_path`` and
     ``environ`` default to the process's. Raises WorldFileError (with the line) for a file roslaunch could not
     parse either: malformed XML, a root other than ``<launch>``, an ``<arg>``/``<node>``/``<include>`` missing
-    its required attributes, circular includes. Unresolvable references become findings.
+    its required attributes, circular includes. Unresolvable references become findings, and only what depends
+    on them stays unknown (roslaunch stops at the first one: an unset ``$(env TURTLEBOT3_MODEL)`` default fails
+    it even when ``model:=`` is passed).
     """
     path = Path(path)
     environ = os.environ if environ is None else environ
     reader = _Reader(path, PackageFinder(path, ros_package_path), environ)
     reader.load(path, {k: str(v) for k, v in (args or {}).items()}, "/", None)
     info = reader.info
-    top = _Scope(path, {}, {}, "/")
-    model_arg = reader.raw_args.get("model")
     if info.robots:
-        first = info.robots[0]
-        info.spawn = first.pose
-        info.model = first.robot
-    if info.model is None and info.args.get("model"):
-        info.model = info.args["model"]
+        info.spawn, info.model = info.robots[0].pose, info.robots[0].robot
+    if info.model is None:
+        info.model = info.args.get("model")
+    model_arg = reader.raw_args.get("model")
     if info.model is None and model_arg:
         env = re.search(r"\$\((?:opt)?env\s+(\w+)", model_arg)
         info.model_env = env.group(1) if env else None
-    if info.spawn is None and not info.robots and "x_pos" in info.args:
+    if info.spawn is None and not info.robots and "x_pos" in info.args:   # args only: a file that includes the spawn
         try:
             info.spawn = tuple(float(info.args.get(k) or 0.0) for k in ("x_pos", "y_pos", "z_pos", "yaw"))
         except ValueError:
-            reader.note("launch-spawn", "error", "x_pos/y_pos/z_pos/yaw are not numbers", top, None,
-                        "give the spawn args numeric defaults")
+            reader.note("launch-spawn", "error", "x_pos/y_pos/z_pos/yaw are not numbers", _Scope(path, {}, {}, "/"),
+                        None, "give the spawn args numeric defaults")
     return info
 
 
@@ -983,7 +980,7 @@ def _check_launch(launch: Path, name: str, pkg_dir: Path, used: set[str], add, r
         add("launch-parse", "error", err.message, f"{err.path}:{err.line}" if err.line else err.path, err.hint)
         return
     for finding in info.findings:
-        if finding.severity == "error":
+        if finding.severity in ("error", "warning"):
             add(finding.check, finding.severity, finding.message, finding.where, finding.fix)
     if info.world_path is not None and not info.world_path.is_file():
         add("launch-world", "error", f"the world file {info.world_path} does not exist", launch,
