@@ -60,9 +60,9 @@ def launch_env(work: Path, stubs: Path, workspace: Path, **extra) -> dict[str, s
 
 
 def test_catkin_make_builds_and_installs(workspace, work):
-    need("catkin_make")
     proc = subprocess.run([need("catkin_make"), "-C", str(workspace), "install",
-                           "-DPYTHON_EXECUTABLE=/usr/bin/python3"], cwd=workspace, capture_output=True, text=True, env=ros_env(work), timeout=300)
+                           "-DPYTHON_EXECUTABLE=/usr/bin/python3"], cwd=workspace, capture_output=True, text=True,
+                          env=ros_env(work), timeout=300)
     assert proc.returncode == 0, proc.stdout[-3000:] + proc.stderr[-3000:]
     assert "non standard content" not in proc.stdout + proc.stderr   # the metapackage's boilerplate is catkin's
     install = workspace / "install"

@@ -25,7 +25,6 @@ STOP_TARGET = 0.5        # m: stop-at-wall drives to this distance from the wall
 STOP_TOLERANCE = 0.05    # m: and must end within this of it
 TILT_LIMIT = 10.0        # degrees: an upright robot after settling
 GROUND_LIMIT = 0.02      # m: base_footprint within this of the floor after settling
-MAX_GAP_FINDINGS = 6     # gaps named one by one; the rest are summed up in one finding
 FLOOR_STEP = 0.1         # m: a slab no higher than this under the spawn is the floor the robot stands on
 
 
@@ -214,43 +213,42 @@ def check_enclosed(scene: Scene, spawn: tuple[float, float, float], body: RobotB
                        "opening narrower than 8 m would close the region round it")
             fix = "put the spawn inside a room, or close the room round it"
         return Outcome([Finding("enclosed", "error", message, where=where, fix=fix)], metrics)
-    # The plane is open. Can the robot itself leave? Its body spans the floor to its top, so a window sill or a
-    # low obstacle under the beams may hold it in while the beams still pass.
-    from .enclosure import analyse, footprints_between
+    # The plane is open. Can the robot itself pass each gap? Its body spans the floor to its top, so a window
+    # sill or an obstacle under the beams may hold it in while the beams still pass.
+    from .enclosure import footprints_between, passage_width
 
-    band = analyse(footprints_between(scene, ground + CLIMB, ground + body.height, also=(height,)), spawn[:2],
-                   height)
-    exits = [g for g in band.gaps if g.width >= body.width] if band.enclosed is False else []
-    if band.enclosed is False and not band.gaps:      # nothing at all stops it
-        exits = [g for g in found.gaps if g.width >= body.width]
-    leaks = [g for g in found.gaps if all(math.dist(g.centre, e.centre) > 0.3 for e in exits)]
+    band = footprints_between(scene, ground + CLIMB, ground + body.height, also=(height,))
+    passes = [passage_width(band, gap) >= body.width for gap in found.gaps]
+    exits = [g for g, ok in zip(found.gaps, passes) if ok]
+    leaks = [g for g, ok in zip(found.gaps, passes) if not ok]
     metrics["robot_enclosed"] = not exits
-    metrics["exits"] = [g.to_dict() for g in exits]
+    metrics["gaps"] = [{**g.to_dict(), "robot_passes": ok} for g, ok in zip(found.gaps, passes)]
     findings = [Finding(
         "enclosed", "error",
-        f"the room is open: a {gap.width:.2f} m gap at {_xy(gap.centre)}{_between(gap)}; the {body.name} "
+        f"the room is open: a {_width(gap.width)} gap at {_xy(gap.centre)}{_between(gap)}; the {body.name} "
         f"({body.width:.3f} m wide) can drive out through it",
         where=f"gap from {_xy(gap.ends[0])} to {_xy(gap.ends[1])}",
         fix="close the gap (join the walls there, or remove the opening), or move the spawn into a closed room")
-        for gap in exits[:MAX_GAP_FINDINGS]]
+        for gap in exits]
     findings += [Finding(
         "enclosed", "warning",
-        f"LiDAR beams leave the room through a {gap.width:.2f} m opening at {_xy(gap.centre)}{_between(gap)} "
+        f"LiDAR beams leave the room through a {_width(gap.width)} opening at {_xy(gap.centre)}{_between(gap)} "
         f"({height:.3f} m above the ground); the {body.name} cannot pass "
         + ("(too narrow)" if gap.width < body.width else "(something below or above the beams blocks it)"),
         where=f"opening from {_xy(gap.ends[0])} to {_xy(gap.ends[1])}",
         fix="close it at LiDAR height if the robot should see walls all round, or handle the readings that "
             "see nothing")
-        for gap in leaks[:MAX_GAP_FINDINGS]]
-    shown = min(len(exits), MAX_GAP_FINDINGS) + min(len(leaks), MAX_GAP_FINDINGS)
-    rest = [g for g in exits[MAX_GAP_FINDINGS:] + leaks[MAX_GAP_FINDINGS:]]
-    if rest:
+        for gap in leaks]
+    if found.more:
         findings.append(Finding(
-            "enclosed", "error" if len(exits) > MAX_GAP_FINDINGS else "warning",
-            f"… and {len(rest)} more gaps, {min(g.width for g in rest):.2f} to {max(g.width for g in rest):.2f} m "
-            f"wide, beyond the {shown} above (all listed in the JSON report's metrics.gaps)",
-            fix="close the gaps, or move the spawn into a closed room"))
+            "enclosed", "error" if exits else "warning",
+            f"there may be more gaps: the search stops after the {len(found.gaps)} above",
+            fix="close these and validate again"))
     return Outcome(findings, metrics)
+
+
+def _width(width: float) -> str:
+    return f"{width:.2f} m" if width >= 0.1 else f"{width * 1000:.0f} mm"
 
 
 def _between(gap) -> str:
@@ -491,7 +489,8 @@ def _stop_at_wall(session, stop_at_wall) -> dict:
         if ahead is None:
             return {"no_wall": True, "range": scan.range_max, "distance": None, "touched": []}
     speed = 0.22
-    duration = min(30.0, max(0.0, ahead - STOP_TARGET) / speed + 5.0)
+    # long enough to cross the whole LiDAR range: what is ahead may change as the robot passes obstacles
+    duration = (scan.range_max - STOP_TARGET) / speed + 10.0
     start_t = session.t
     run = stop_at_wall(session, target=STOP_TARGET, kp=STOP_KP, duration=duration, max_speed=speed)
     return {"distance": run.final_distance, "touched": _touched(run.contacts),

@@ -14,6 +14,7 @@ from ``templates/nodes/``; everything else comes from :mod:`worldgen.scaffold`, 
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 
 from .launch import default_launch_name, launch_xml, parse_node, render_template
@@ -31,7 +32,7 @@ STOP = {"target_distance": 0.5, "kp": 0.5, "max_speed": 0.2, "front_angle": 10}
 def _request(name: str, description: str, maintainer: str | None, exec_only=()) -> PackageRequest:
     req = package_request(name, DEPENDENCIES, version=VERSION, description=description, licenses=[LICENSE],
                           maintainers=[maintainer] if maintainer else ())
-    return PackageRequest(**{**req.__dict__, "exec_only": tuple(exec_only)})
+    return replace(req, exec_only=tuple(exec_only))
 
 
 def course_files(maintainer: str | None = None) -> PackageFiles:
@@ -61,10 +62,9 @@ def course_files(maintainer: str | None = None) -> PackageFiles:
     meta_req = package_request(REPOSITORY, [], version=VERSION, licenses=[LICENSE], meta=True,
                                description="The intro robotics class: its labs and Gazebo worlds",
                                maintainers=[maintainer] if maintainer else ())
-    meta = package_files(PackageRequest(**{**meta_req.__dict__, "exec_only": (
-        "lab_a_spin_circles", "lab_a_stop_at_wall", WORLD_PACKAGE)}))
+    meta = package_files(replace(meta_req, exec_only=("lab_a_spin_circles", "lab_a_stop_at_wall", WORLD_PACKAGE)))
 
-    merged = PackageFiles({}, set(), ())
+    merged = PackageFiles({}, set())
     for folder, pkg in ((REPOSITORY, meta), ("lab_a_spin_circles", spin), ("lab_a_stop_at_wall", stop),
                         (WORLD_PACKAGE, world_pkg)):
         placed = pkg.under(folder)

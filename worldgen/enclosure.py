@@ -26,7 +26,7 @@ SLIVER = 0.0005        # every footprint grows by this much: gaps under 1 mm are
 MARGIN = 1.0           # the "outside" frame lies this far beyond the scene and the spawn
 MAX_GAP = 8.0          # openings wider than this are not gaps any more: the walls do not surround the spawn
 WIDTH_TOLERANCE = 0.005
-MAX_GAP_ROUNDS = 5
+MAX_GAP_ROUNDS = 6
 CIRCLE_SEGMENTS = 16   # per quarter circle, for cylinders and spheres
 PRISM_SIDES = 48       # tilted cylinders are sliced as prisms with this many sides
 
@@ -75,6 +75,7 @@ class Enclosure:
     region_bounds: tuple[float, float, float, float] | None = None
     nearest: float | None = None
     rooms: tuple[tuple[float, float, float, float], ...] = ()
+    more: bool = False      # the search stopped after MAX_GAP_ROUNDS gaps: there may be more
 
 
 # --------------------------------------------------------------------------------------------------- slicing
@@ -375,10 +376,11 @@ class _Space:
         outside = self.at(r)[1]
         return outside is None or outside.distance(shapely.Point(point)) > r + 1e-9
 
-    def critical_radius(self, point) -> float | None:
-        """Smallest radius (to :data:`WIDTH_TOLERANCE`/2) that cuts ``point`` off; None up to MAX_GAP/2."""
+    def critical_radius(self, point) -> tuple[float, float] | None:
+        """The radii just below and just above (to :data:`WIDTH_TOLERANCE`/2) the one that cuts ``point``
+        off; None when even MAX_GAP/2 does not, (0, 0) when it is cut off already."""
         if self.cut_off(point, 0.0):
-            return 0.0
+            return 0.0, 0.0
         lo, hi = 0.0, 0.05
         while not self.cut_off(point, hi):
             if hi >= MAX_GAP / 2:
@@ -387,7 +389,7 @@ class _Space:
         while hi - lo > WIDTH_TOLERANCE / 2:
             mid = (lo + hi) / 2
             lo, hi = (lo, mid) if self.cut_off(point, mid) else (mid, hi)
-        return hi
+        return lo, hi
 
     def plugged(self, plug) -> _Space:
         import shapely
@@ -403,21 +405,23 @@ class _Way:
     real: bool                   # the point it was found for lies in a region a disc of that size can be in
 
 
-def _neck(space: _Space, point: tuple[float, float], r: float, prints: list[Footprint]) -> _Way | None:
-    """The narrowest place between ``point`` and the outside, just past the radius ``r`` that cut it off:
-    where the point's side and the outside (as disc centres) come closest. Its ends are the nearest wall
-    points on either side of it."""
+def _neck(space: _Space, point: tuple[float, float], lo: float, hi: float, prints: list[Footprint]
+          ) -> _Way | None:
+    """The narrowest place between ``point`` and the outside. At radius ``hi`` the point is cut off, at ``lo``
+    it is not: the neck is the bit of disc-centre space that exists at ``lo`` and joins the point's side to the
+    outside, but is gone at ``hi``. Its ends are the nearest wall points on either side of it."""
     import shapely
     from shapely.ops import nearest_points
 
-    parts, outside = space.at(r)
+    parts, outside = space.at(hi)
     if outside is None:
         return None
     here = shapely.Point(point)
-    side = [c for c in parts if c is not outside and c.distance(here) <= r + 1e-9]
+    side = [c for c in parts if c is not outside and c.distance(here) <= hi + 1e-9]
     if side:
-        a, x = nearest_points(shapely.union_all(side), outside)
-        neck = ((a.x + x.x) / 2, (a.y + x.y) / 2)
+        side = shapely.union_all(side)
+        a, x = nearest_points(side, outside)
+        neck = _channel(space.at(lo)[0], side, outside, hi - lo) or ((a.x + x.x) / 2, (a.y + x.y) / 2)
     else:   # no disc of that size fits on the point's side at all (a room missing a whole wall)
         a, x = here, nearest_points(here, outside)[1]
         neck = (x.x, x.y)
@@ -428,6 +432,23 @@ def _neck(space: _Space, point: tuple[float, float], r: float, prints: list[Foot
     gap = _gap_between(e1, e2, prints)
     plug = shapely.LineString([e1, e2]).buffer(2 * SLIVER, quad_segs=1)
     return _Way(gap, plug, _beyond(space, gap, (x.x - a.x, x.y - a.y)), bool(side))
+
+
+def _channel(parts_lo, side, outside, d: float):
+    """Where the disc-centre space at the smaller radius joins ``side`` to ``outside`` (both taken at the
+    larger radius, ``d`` more): the pieces of it farther than ``d`` from both that touch both. The middle of the
+    longest such piece, or None."""
+    import shapely
+
+    grown_side, grown_out = side.buffer(d + 1e-6, quad_segs=4), outside.buffer(d + 1e-6, quad_segs=4)
+    rest = shapely.union_all(parts_lo).difference(shapely.union_all([grown_side, grown_out]))
+    bridges = [p for p in _components(rest)
+               if p.distance(grown_side) < 1e-5 and p.distance(grown_out) < 1e-5]
+    if not bridges:
+        return None
+    best = max(bridges, key=lambda p: (p.length, p.area))
+    c = best.representative_point()
+    return (c.x, c.y)
 
 
 def _gap_ends(obstacles, neck, outward):
@@ -482,10 +503,10 @@ def _way_out(space: _Space, point, prints: list[Footprint], depth: int = 0) -> _
     partition, say). When the far side of that cut is itself a region closed at a larger scale (a disc of that
     size fits in it and cannot get out), the search closes the cut and follows that region's way out instead:
     the door a person would name."""
-    r = space.critical_radius(point)
-    if not r:
+    bounds = space.critical_radius(point)
+    if bounds is None or not bounds[1]:
         return None
-    way = _neck(space, point, r, prints)
+    way = _neck(space, point, *bounds, prints)
     if way is None:
         return None
     if depth < MAX_DEPTH and way.beyond is not None:
@@ -505,8 +526,24 @@ def _gap_between(e1, e2, prints: list[Footprint]) -> Gap:
         near = min(prints, key=lambda f: f.geometry.distance(p), default=None)
         if near is not None and near.label not in between and near.geometry.distance(p) < 0.01:
             between.append(near.label)
-    return Gap(centre=((e1[0] + e2[0]) / 2, (e1[1] + e2[1]) / 2), width=math.dist(e1, e2), ends=(e1, e2),
-               between=tuple(between))
+    # the ends lie on the footprints grown by SLIVER: the opening itself is that much wider on each side
+    return Gap(centre=((e1[0] + e2[0]) / 2, (e1[1] + e2[1]) / 2), width=math.dist(e1, e2) + 2 * SLIVER,
+               ends=(e1, e2), between=tuple(between))
+
+
+def passage_width(prints: list[Footprint], gap: Gap) -> float:
+    """How wide the way through ``gap`` is among other footprints (the robot's body, say, rather than the
+    LiDAR plane): 0 when they block its middle, else the distance between their nearest points either side."""
+    import shapely
+
+    if not prints:
+        return math.inf
+    obstacles = obstacle_union(prints)
+    if obstacles.covers(shapely.Point(gap.centre)):
+        return 0.0
+    (ax, ay), (bx, by) = gap.ends
+    ends = _gap_ends(obstacles, gap.centre, (-(by - ay), bx - ax))
+    return math.dist(*ends) + 2 * SLIVER if ends is not None else math.inf
 
 
 def analyse(prints: list[Footprint], spawn: tuple[float, float], height: float) -> Enclosure:
@@ -530,15 +567,18 @@ def analyse(prints: list[Footprint], spawn: tuple[float, float], height: float) 
                          region_bounds=tuple(region.bounds), nearest=nearest)
     rooms = _closed_regions(space.at(0.0)[0], frame, point)
     gaps: list[Gap] = []
+    more = True
     for _ in range(MAX_GAP_ROUNDS):   # name the widest way out, close it, look again
         way = _way_out(space, spawn, prints)
         if way is None or any(math.dist(way.gap.centre, g.centre) < 0.01 for g in gaps):
+            more = False
             break
         gaps.append(way.gap)
         space = space.plugged(way.plug)
         if space.cut_off(spawn, 0.0):
+            more = False
             break
-    return Enclosure(spawn, height, enclosed=False, gaps=tuple(gaps), nearest=nearest, rooms=rooms)
+    return Enclosure(spawn, height, enclosed=False, gaps=tuple(gaps), nearest=nearest, rooms=rooms, more=more)
 
 
 ROOM_MIN_AREA = 0.25   # m²: closed pockets smaller than this (inside a pillar, between joined walls) are no rooms

@@ -12,11 +12,13 @@ How a plan becomes walls (all distances in metres, along wall centre-lines):
    line of rooms' sides is one wall, as a person would draw it in the Building Editor.
 2. Wall ends that meet are *nodes*. A free end reaches ``thickness/2`` past its point (the editor's way: a wall
    drawn 5 m between centre points is a 5.15 m box). The end of a wall meeting another wall's middle (a
-   T-junction) reaches the far face of that wall. Two ends meeting at a corner reach the point where their outer
-   faces meet (``(t/2)·tan(φ/2)`` for a turn of φ), which closes the corner exactly; where that would poke out
-   (a corner sharper than 90°) each wall stops where it still lies inside the other, and thin *filler* boxes
-   along the outer faces cover the mitre's spike, so the union of all boxes stays within ``JOIN_TOLERANCE`` of
-   the ideal mitred band and nothing pokes out of it.
+   T-junction) reaches the far face of that wall. Two ends that a room draws as its corner (or, where no room
+   does, the two on either side of a gap of 180° or more) reach the point where their outer faces meet
+   (``(t/2)·tan(φ/2)`` for a turn of φ), which closes the corner exactly; where that would poke out (a corner
+   sharper than 90°) each wall stops where it still lies inside the other, and thin *filler* boxes along the
+   outer faces cover the mitre's spike, so the union of all boxes stays within ``JOIN_TOLERANCE`` of the ideal
+   mitred band and nothing pokes out of it. Other ends (a Y of three walls, say) stop at the point, which
+   already closes it.
 3. Openings are placed on their merged wall and split it into pieces; an opening that runs into another wall
    (a corner, a T-junction, a crossing) or overlaps another opening is a SpecError naming its spec line.
 """
@@ -265,6 +267,9 @@ def build_geometry(spec: Spec) -> Building:
                    (Piece(0.0, math.dist(f.start, f.end), 0.0, f.height),), rooms=f.rooms, filler=True)
               for i, f in enumerate(fillers)]
     _check_clearance(walls, runs, spec)
+    if spec.name == "ground_plane" and walls:
+        _fail(spec, "the world cannot be named 'ground_plane': its building model would clash with the ground",
+              None, "choose another name")
     obstacle_names(spec.obstacles, spec.name, spec=spec)
 
     wall_points = [c for w in walls for c in w.footprint()]

@@ -5,14 +5,16 @@ The writer emits the class's launch file shape (the one of ``turtlebot3_gazebo``
 ``$(find PKG)/worlds/WORLD`` and the usual ``paused``/``use_sim_time``/``gui``/``headless``/``debug`` args passed
 through; ``robot_description`` from xacro; ``spawn_model`` named ``spawn_urdf``; optional extra nodes.
 
-The spawn point of a world file is chosen inside its room: the walls are sliced at robot height, the free floor
-that no robot-sized disc can leave is found, and the point deepest inside it (a largest-inscribed-circle centre) is
-taken. An explicit spawn outside every room is refused.
+The spawn point of a world file is chosen inside its room: walls and obstacles are sliced in the robot's height
+band, the free areas the walls close are found (the room holding the building's centre first), and the centre of
+the largest circle inside it is taken. An explicit spawn inside a wall, closer to one than the robot's radius, or
+outside the room is refused.
 
 The reader (:func:`read_launch`) evaluates a launch file the way roslaunch does for what matters here — args and
 their defaults, ``$(arg)``/``$(env)``/``$(optenv)``/``$(find)``/``$(dirname)``/``$(anon)``, groups and namespaces,
 ``if``/``unless``, includes with passed args — and reports the world, the robot model and every ``spawn_model``
-pose, with findings for whatever cannot be resolved instead of failing.
+pose, with findings for whatever cannot be resolved instead of failing. :func:`check_package` uses it to say what
+would break in a catkin package.
 """
 
 from __future__ import annotations
@@ -30,7 +32,6 @@ from .findings import Finding
 from .spec import ROBOT_MODELS
 
 MODEL_CHOICES = ("env",) + ROBOT_MODELS   # "env": the model comes from $(env TURTLEBOT3_MODEL) at run time
-MODEL_DOC = "model type [burger, waffle, waffle_pi]"
 # Radius of the disc that holds each robot's footprint around base_footprint (ROBOTIS navigation parameters:
 # burger robot_radius 0.105 m; waffle and waffle_pi footprint corners up to 0.257 m from the centre).
 ROBOT_RADIUS = {"burger": 0.105, "waffle": 0.257, "waffle_pi": 0.257}
@@ -706,8 +707,8 @@ class _Reader:
             return err
 
     def on_group(self, el, scope: _Scope) -> None:
-        inner = _Scope(scope.path, scope.args, scope.passed, _join_ns(scope.ns, self._try_str(el.get("ns") or "", scope)))
-        self.walk(el, inner)
+        ns = _join_ns(scope.ns, self._try_str(el.get("ns") or "", scope))
+        self.walk(el, _Scope(scope.path, scope.args, scope.passed, ns))   # args are shared with the file
 
     def on_param(self, el, scope: _Scope) -> None:
         name = el.get("name")

@@ -1,15 +1,17 @@
-"""catkin packages: ``catkin_create_pkg``-compatible scaffolding for the class, and a package checker.
+"""catkin packages: ``catkin_create_pkg``-compatible scaffolding for the class.
 
 :func:`package_request` takes catkin_create_pkg's arguments and gives them the same meaning (defaults, sorting,
 the three-tag expansion of each dependency, ``python-*`` system deps as exec_depend only, boost, ``--meta``);
 :func:`package_files` renders package.xml (format 2) and a CMakeLists.txt in catkin's skeleton shape, plus the
 folders a class package needs (``launch/``, ``worlds/``, ``scripts/``, and ``src/``/``include/NAME`` as catkin
-makes them). A package with a world also exec_depends on gazebo_ros, turtlebot3_description and xacro and exports
-its ``models/`` folder to Gazebo. :func:`check_package` reads a package back and says what would break.
+makes them). A package with launch files also exec_depends on gazebo_ros, turtlebot3_description and xacro; one
+with a world also has a ``models/`` folder that it exports to Gazebo. (:func:`worldgen.launch.check_package` reads
+a package back and says what would break.)
 
 Deliberate differences from catkin_create_pkg, each where catkin's output would not work: values are XML-escaped;
 ``catkin_package()`` lists the catkin dependencies in ``CATKIN_DEPENDS`` (catkin_lint calls it an error when
-message packages are missing there); a metapackage exec_depends on its members only (REP 127); a maintainer given
+message packages are missing there) and ``find_package`` leaves out ``message_runtime`` (catkin_lint: it is no
+build_depend); a metapackage exec_depends on its members only (REP 127); a maintainer given
 as ``"Name <email>"`` or ``"Name email@host"`` keeps that email (catkin would make the invalid
 ``email@host@todo.todo``), and an author given as ``"Name <email>"`` gets the email.
 """
@@ -18,7 +20,7 @@ from __future__ import annotations
 
 import getpass
 import re
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Iterable, Mapping, Sequence
 
@@ -65,7 +67,7 @@ class PackageRequest:
     maintainers: tuple[Person, ...] = ()
     authors: tuple[Person, ...] = ()
     meta: bool = False
-    exec_only: tuple[str, ...] = field(default=())   # extra exec_depends (the class's Gazebo packages, members)
+    exec_only: tuple[str, ...] = ()   # extra exec_depends (the Gazebo packages, a metapackage's members)
 
 
 def _person(text: str, maintainer: bool) -> Person:
@@ -176,16 +178,15 @@ def cmakelists(req: PackageRequest, data_dirs: Sequence[str] = (), scripts: Sequ
 
 @dataclass
 class PackageFiles:
-    """A package's files (relative path → text), which of them are executable, and its empty folders."""
+    """A package's files (relative path → text) and which of them are executable."""
 
     files: dict[str, str]
     executable: set[str] = field(default_factory=set)
-    dirs: tuple[str, ...] = ()
 
     def under(self, prefix: str) -> "PackageFiles":
         """The same package placed in the folder ``prefix`` (for a tree of several packages)."""
         return PackageFiles({f"{prefix}/{k}": v for k, v in self.files.items()},
-                            {f"{prefix}/{k}" for k in self.executable}, tuple(f"{prefix}/{d}" for d in self.dirs))
+                            {f"{prefix}/{k}" for k in self.executable})
 
 
 def package_files(req: PackageRequest, worlds: Mapping[str, str] | None = None,
@@ -204,7 +205,7 @@ def package_files(req: PackageRequest, worlds: Mapping[str, str] | None = None,
         return PackageFiles({"package.xml": package_xml(req), "CMakeLists.txt": cmakelists(req)})
     if gazebo:
         extra = tuple(d for d in GAZEBO_DEPENDS if d not in req.catkin_deps)
-        req = PackageRequest(**{**req.__dict__, "exec_only": tuple(sorted(set(req.exec_only) | set(extra)))})
+        req = replace(req, exec_only=tuple(sorted(set(req.exec_only) | set(extra))))
     files: dict[str, str] = {}
     files.update({f"worlds/{n}": t for n, t in worlds.items()})
     files.update({f"launch/{n}": t for n, t in launches.items()})
@@ -264,4 +265,4 @@ def create_package(parent: str | Path, req: PackageRequest, *, world_spec: str |
             raise InputError("a metapackage holds no worlds", hint="leave out --meta or --world")
         worlds, launches = world_package_files(world_spec, req.name)
     pkg = package_files(req, worlds, launches)
-    return write_tree(target, pkg.files, force=force, executable=pkg.executable, dirs=pkg.dirs)
+    return write_tree(target, pkg.files, force=force, executable=pkg.executable)

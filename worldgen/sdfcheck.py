@@ -28,7 +28,6 @@ for name in {LIBRARIES!r}:
         continue
     check.argtypes = [ctypes.c_char_p]
     check.restype = ctypes.c_int
-    sys.stdout.flush()
     sys.exit(0 if check(sys.argv[1].encode()) == 0 else 1)
 sys.exit({_ABSENT})
 """
@@ -37,8 +36,8 @@ sys.exit({_ABSENT})
 def sdformat_check(path: str | Path, *, timeout: float = 300.0) -> tuple[bool, str] | None:
     """``(valid, messages)`` from libsdformat's check of ``path``, or None when the library is not installed.
 
-    ``messages`` is what the library printed (stdout and stderr, without colour codes). A crash or a timeout counts as not
-    valid, with the reason in ``messages``.
+    ``messages`` is what the library printed (stdout and stderr, without colour codes). A crash or a timeout
+    counts as not valid, with the reason in ``messages``.
     """
     cmd = [sys.executable, "-c", _CHILD, os.fspath(Path(path).resolve())]
     try:

@@ -31,6 +31,7 @@ SDF_VERSION_CHOICES = ("1.6", "1.7", "1.8", "1.9")   # = worldgen.sdf.writer.SDF
 def build_command(spec: Path, out_dir: Path, sdf_version: str, model_dir: bool, package_dir: Path | None,
                   force: bool) -> None:
     """Build the Gazebo world of the floorplan SPEC (YAML/JSON, or an ASCII grid .txt) as OUT/NAME.world."""
+    from ..errors import InputError
     from ..fsio import write_files
     from ..geometry import build_geometry
     from ..sdf.writer import planned_files
@@ -38,6 +39,9 @@ def build_command(spec: Path, out_dir: Path, sdf_version: str, model_dir: bool, 
 
     plan = load_spec(spec)
     building = build_geometry(plan)
+    if model_dir and not building.walls:
+        raise InputError(f"{spec} has no walls, so there is no building model for --model-dir",
+                         hint="leave out --model-dir, or add rooms or segments")
     files = planned_files(building, out_dir, sdf_version=sdf_version, model_dir=model_dir,
                           description=f"{building.name}: built by worldgen from {spec.name}")
     if package_dir is not None:   # the world moves into the package, beside its launch file

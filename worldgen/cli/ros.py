@@ -15,7 +15,7 @@ from ..launch import MODEL_CHOICES
 
 @click.command("launch")
 @click.argument("world", type=click.Path(exists=True, dir_okay=False, path_type=Path))
-@click.option("--package", "-p", "package", metavar="PKG",
+@click.option("--package", "package", metavar="PKG",
               help="The package whose worlds/ folder holds WORLD (default: the package around WORLD).")
 @click.option("--name", metavar="FILE", help="Launch file name (default: turtlebot3_in_<world>.launch).")
 @click.option("--model", type=click.Choice(MODEL_CHOICES), default="env", show_default=True,
@@ -115,7 +115,7 @@ def scaffold_command(name: str, dependencies: tuple[str, ...], meta: bool, sys_d
                           description=description, licenses=licenses, authors=authors, maintainers=maintainers,
                           meta=meta, rosdistro=rosdistro)
     target = create_package(parent, req, world_spec=world_spec, force=force)
-    click.echo(f"created {target}")
+    click.echo(f"wrote {target}")
 
 
 @click.command("course")
