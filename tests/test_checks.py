@@ -195,3 +195,12 @@ def test_settle_failures():
     assert "fell through" in errors(fell, "settle")[0].message
     on_slab = sim_findings(numbers(settle={"z": 0.05}), BURGER, "inf", ground=0.05)
     assert errors(on_slab) == []
+
+
+def test_standing_on_a_floor_slab_is_not_touching():
+    slab = "asphalt_plane/link/collision"
+    rolled = numbers(spin={"touched": [slab], "contact_points": [{"shape": slab, "link": "wheel_left_link",
+                                                                  "time": 0.0}]},
+                     stop={"touched": [slab]}, settle={"z": 0.05})
+    assert errors(sim_findings(rolled, BURGER, "inf", ground=0.05, floor=slab)) == []
+    assert {f.check for f in errors(sim_findings(rolled, BURGER, "inf"))} == {"spin", "stop-at-wall", "settle"}

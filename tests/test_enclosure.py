@@ -72,7 +72,8 @@ def test_gap_in_a_rotated_offset_room_is_in_world_coordinates():
     e = enclosure(square_room(door=(2, 1.0, 0.9), centre=centre, yaw=yaw), centre, LIDAR_Z)
     # wall 2 runs from (2.5, 2.5) to (-2.5, 2.5); the opening spans local x 1.5 .. 0.6, centre (1.05, 2.5)
     lx, ly = 1.05, 2.5
-    expected = (centre[0] + math.cos(yaw) * lx - math.sin(yaw) * ly, centre[1] + math.sin(yaw) * lx + math.cos(yaw) * ly)
+    c, s = math.cos(yaw), math.sin(yaw)
+    expected = (centre[0] + c * lx - s * ly, centre[1] + s * lx + c * ly)
     assert e.enclosed is False and len(e.gaps) == 1
     assert math.dist(e.gaps[0].centre, expected) < 0.3
     assert e.gaps[0].width == pytest.approx(0.9, abs=0.01)
@@ -179,7 +180,8 @@ def test_box_sections_exact_for_upright_and_tilted_boxes():
     upright = section(Shape("box", (1.0, 2.0, 0.5), quat_yaw(0.3), size=(2.0, 0.5, 1.0)), LIDAR_Z)
     assert upright.area == pytest.approx(1.0)
     assert upright.centroid.x == pytest.approx(1.0) and upright.centroid.y == pytest.approx(2.0)
-    # a 1 m cube tipped 45° about x, centred at z = 0.5: at height z the section is 1 m (x) by 2·(0.5√2 − |z − 0.5|)
+    # a 1 m cube tipped 45° about x, centred at z = 0.5: at height z the section is 1 m (x) by
+    # 2·(0.5√2 − |z − 0.5|)
     a = math.pi / 4
     tipped = Shape("box", (0.0, 0.0, 0.5), (math.sin(a / 2), 0.0, 0.0, math.cos(a / 2)), size=(1.0, 1.0, 1.0))
     depth = 2 * (0.5 * math.sqrt(2) - (0.5 - LIDAR_Z))

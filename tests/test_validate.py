@@ -269,9 +269,9 @@ def test_package_folder_validates_each_launch_file(tmp_path):
   <exec_depend>gazebo_ros</exec_depend>
 </package>
 """, encoding="utf-8")
-    (pkg / "CMakeLists.txt").write_text("cmake_minimum_required(VERSION 3.0.2)\nproject(my_room)\n"
-                                        "find_package(catkin REQUIRED)\ncatkin_package()\n"
-                                        "install(DIRECTORY launch worlds DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})\n")
+    (pkg / "CMakeLists.txt").write_text(
+        "cmake_minimum_required(VERSION 3.0.2)\nproject(my_room)\nfind_package(catkin REQUIRED)\ncatkin_package()\n"
+        "install(DIRECTORY launch worlds DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})\n")
     (pkg / "launch" / "room.launch").write_text("""<launch>
   <arg name="x_pos" default="0.8"/>
   <arg name="y_pos" default="-0.6"/>
@@ -321,3 +321,23 @@ def test_progress_bar_only_on_a_terminal(tmp_path):
     proc = subprocess.run([sys.executable, "-m", "worldgen", "validate", "--skip-sim", *map(str, worlds)],
                           capture_output=True, text=True, env=dict(os.environ))
     assert proc.returncode == 0 and proc.stderr == ""
+
+
+def test_unreadable_files_are_failed_checks_not_tracebacks(tmp_path):
+    (tmp_path / "broken.world").write_text("<sdf version='1.6'><world name='w'>", encoding="utf-8")
+    (tmp_path / "broken.launch").write_text("<launch><arg name='x'</launch>", encoding="utf-8")
+    (tmp_path / "bad.yaml").write_text("name: bad\nrooms: [{name: r, rect: {center: [0, 0], size: [-5, 5]}}]\n",
+                                       encoding="utf-8")
+    report = tmp_path / "junit.xml"
+    code, doc = as_json(tmp_path / "broken.world", tmp_path / "broken.launch", tmp_path / "bad.yaml",
+                        "--junit", report)
+    assert code == 1
+    world, launch, spec = doc["results"]
+    assert [(f["check"], f["severity"]) for f in world["findings"]] == [("parse", "error")]
+    assert world["findings"][0]["where"].startswith(str(tmp_path / "broken.world"))
+    assert world["skipped"]["enclosed"] == "the world cannot be read"
+    assert [(f["check"], f["severity"]) for f in launch["findings"]] == [("launch", "error")]
+    assert spec["findings"][0]["where"] == f"{tmp_path / 'bad.yaml'}:2"
+    failing = etree.parse(str(report)).getroot().xpath("//testcase[failure]")
+    assert [(c.get("classname").rsplit("/", 1)[-1], c.get("name")) for c in failing] == [
+        ("broken.world", "parse"), ("broken.launch", "launch"), ("bad.yaml", "parse")]

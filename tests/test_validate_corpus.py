@@ -141,8 +141,8 @@ def test_corpus_details_at_origin(at_origin):
     assert playpen["slice_height_m"] == pytest.approx(0.232)
     room = results["Intro-Robotics-UChicago-Spring-2022__warmup_project__worlds_turtlebot3_in_enclosed_room.world"]
     assert room["metrics"]["nearest_room"] == pytest.approx([-7.257, -3.761, -2.557, 0.939], abs=0.01)
-    for name in ("ROBOTIS-GIT__turtlebot3_simulations@noetic-devel__turtlebot3_gazebo_worlds_turtlebot3_world.world",
-                 "ROBOTIS-GIT__turtlebot3_simulations@noetic-devel__turtlebot3_gazebo_models_turtlebot3_world_model.sdf"):
+    robotis = "ROBOTIS-GIT__turtlebot3_simulations@noetic-devel__turtlebot3_gazebo_"
+    for name in (robotis + "worlds_turtlebot3_world.world", robotis + "models_turtlebot3_world_model.sdf"):
         assert results[name]["metrics"]["spawn_inside"] == "ros_symbol/symbol/two_two"
 
 

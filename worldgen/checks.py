@@ -13,6 +13,7 @@ import math
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 from functools import lru_cache
+from pathlib import Path
 
 from .findings import Finding
 from .scene import Scene
@@ -58,7 +59,8 @@ def robot_body(robot: str = "burger") -> RobotBody:
 
     urdf = robot_urdf(robot)
     profile = robot_profile(urdf, source=str(robot))
-    return _body_from_urdf(urdf, profile, name=str(robot))
+    name = str(robot) if str(robot) in ("burger", "waffle", "waffle_pi") else Path(str(robot)).name
+    return _body_from_urdf(urdf, profile, name=name)
 
 
 def _body_from_urdf(urdf: str, profile, name: str) -> RobotBody:
@@ -185,6 +187,7 @@ def check_enclosed(scene: Scene, spawn: tuple[float, float, float], body: RobotB
     metrics = {"enclosed": found.enclosed, "slice_height_m": height,
                "gaps": [g.to_dict() for g in found.gaps],
                "enclosed_area_m2": found.region_area,
+               "enclosed_bounds": list(found.region_bounds) if found.region_bounds else None,
                "nearest_wall_m": found.nearest}
     where = f"spawn {_xy(spawn)}"
     if found.inside is not None:
@@ -205,8 +208,9 @@ def check_enclosed(scene: Scene, spawn: tuple[float, float, float], body: RobotB
         if found.rooms:
             x0, y0, x1, y1 = found.rooms[0]
             metrics["nearest_room"] = list(found.rooms[0])
+            centre = ((x0 + x1) / 2, (y0 + y1) / 2)
             message = (f"the spawn {_xy(spawn)} is outside the walls: the nearest closed room spans "
-                       f"x {x0:.2f} … {x1:.2f}, y {y0:.2f} … {y1:.2f} (centre {_xy(((x0 + x1) / 2, (y0 + y1) / 2))})")
+                       f"x {x0:.2f} … {x1:.2f}, y {y0:.2f} … {y1:.2f} (centre {_xy(centre)})")
             fix = "move the spawn into that room (launch x_pos/y_pos, spec robot.at or --spawn)"
         else:
             message = (f"the walls do not surround the spawn: the nearest is {found.nearest:.2f} m away and no "
@@ -278,8 +282,7 @@ def check_spawn_clear(scene: Scene, spawn: tuple[float, float, float], body: Rob
     where = f"spawn {_xy(spawn)}, yaw {spawn[2]:.2f}"
     hit = sorted({label for d, label in distances if d <= 0})
     if hit:
-        depth = max(p.geometry.intersection(robot).area for p in prints)
-        metrics["overlap_m2"] = depth
+        metrics["overlap_m2"] = max(p.geometry.intersection(robot).area for p in prints)
         return Outcome([Finding(
             "spawn-clear", "error",
             f"the {body.name} spawns inside {', '.join(hit[:4])}{' …' if len(hit) > 4 else ''}",
@@ -296,10 +299,19 @@ def check_spawn_clear(scene: Scene, spawn: tuple[float, float, float], body: Rob
 
 # ------------------------------------------------------------------------------------------ simulated checks
 
-def sim_findings(numbers: dict, body: RobotBody, no_hit: str, ground: float = 0.0) -> Outcome:
-    """Judge the numbers :func:`simulate` measured (missing parts are skipped)."""
+def sim_findings(numbers: dict, body: RobotBody, no_hit: str, ground: float = 0.0, floor: str | None = None
+                 ) -> Outcome:
+    """Judge the numbers :func:`simulate` measured (missing parts are skipped). ``ground`` is the floor's height
+    at the spawn and ``floor`` the floor slab's label, if any: standing on it is no touching."""
     findings: list[Finding] = []
     metrics: dict = {}
+    numbers = dict(numbers)
+    for part in ("settle", "spin", "stop"):
+        if numbers.get(part) and floor is not None:
+            numbers[part] = {**numbers[part],
+                             "touched": [t for t in numbers[part].get("touched", []) if t != floor],
+                             "contact_points": [c for c in numbers[part].get("contact_points", [])
+                                                if c["shape"] != floor]}
     settle = numbers.get("settle")
     if settle:
         metrics.update(settle_tilt_deg=settle["tilt_deg"], settle_height_m=settle["z"],
@@ -309,16 +321,18 @@ def sim_findings(numbers: dict, body: RobotBody, no_hit: str, ground: float = 0.
                                     f"after {settle['time']:.1f} s the robot is tipped {settle['tilt_deg']:.0f}°",
                                     where=_contacts_text(settle), fix="spawn it on flat, free floor"))
         elif abs(settle["z"] - ground) > GROUND_LIMIT:
+            fell = settle["z"] < ground
             findings.append(Finding(
                 "settle", "error",
                 f"after {settle['time']:.1f} s the robot is {settle['z'] - ground:+.3f} m from the floor "
-                + ("(it fell through: there is no ground under it)" if settle["z"] < ground else
-                   "(it rests on something)"),
-                where=_contacts_text(settle), fix="give the world a ground plane and spawn the robot on it"))
+                + ("(it fell through: there is no ground under it)" if fell else "(it rests on something)"),
+                where=_contacts_text(settle),
+                fix="give the world a ground plane" if fell else "spawn it on free floor, clear of obstacles"))
     scan = numbers.get("lidar")
     if scan:
         metrics.update(lidar_beams=scan["beams"], lidar_no_hit_beams=scan["no_hit"],
-                       lidar_no_hit_value=no_hit, lidar_no_hit_reading=scan.get("no_hit_reading"), lidar_nearest_m=scan["nearest"],
+                       lidar_no_hit_value=no_hit, lidar_no_hit_reading=scan.get("no_hit_reading"),
+                       lidar_nearest_m=scan["nearest"],
                        lidar_nearest_bearing_deg=scan["nearest_bearing_deg"], lidar_farthest_m=scan["farthest"])
         reads = "inf (as in Gazebo)" if no_hit == "inf" else "0 (as on the real robot)"
         if scan["no_hit"] == scan["beams"]:

@@ -5,12 +5,15 @@ orientation, cylinders and spheres as circles, meshes by their triangle/plane se
 0.5 mm buffer so that sub-millimetre slivers between walls count as closed. The spawn is enclosed when its
 free-space component does not reach the outside (a frame well beyond everything).
 
-When it does reach the outside, the gaps are found by morphological closing: closing the obstacle set with a
-disc of radius ``r`` plugs every opening narrower than ``2·r`` (a disc of diameter ``2·r`` cannot pass it), so
-the smallest ``r`` that cuts the spawn off from the outside measures the way out. The closing's new pieces that
-lie between the spawn's region and the outside are the gaps; where such a piece meets the outside is the gap's
-mouth, whose ends sit on the walls either side: its midpoint is where the gap is and the distance between its ends
-is its width. Plugging those pieces and repeating lists further ways out.
+When it does reach the outside, the ways out are measured with discs: a disc of radius ``r`` passes an opening
+exactly when the opening is wider than ``2·r``, whatever the walls' thickness. Where a disc's centre can be is
+the free space shrunk by ``r``; the smallest ``r`` at which no outside disc can cover the spawn any more is half
+the widest way out. Just below that radius the spawn's side and the outside are joined by a thin channel of
+centre space, the neck: the nearest wall points on either side of it are the gap's ends, their midpoint is where
+the gap is and their distance its width. When the far side of a neck is itself a region closed at a larger scale
+(the space behind a free-standing partition, say), the search follows that region's way out instead, which is
+the door a person would name. The gap is then closed with a thin bar and the search repeats, listing further
+ways out, widest first.
 
 Plain numbers in, plain numbers out: no pybullet here, only numpy and shapely (imported when first used).
 """
@@ -25,8 +28,8 @@ from .scene import Scene, Shape
 SLIVER = 0.0005        # every footprint grows by this much: gaps under 1 mm are closed
 MARGIN = 1.0           # the "outside" frame lies this far beyond the scene and the spawn
 MAX_GAP = 8.0          # openings wider than this are not gaps any more: the walls do not surround the spawn
-WIDTH_TOLERANCE = 0.005
-MAX_GAP_ROUNDS = 6
+WIDTH_TOLERANCE = 0.005  # the critical radius is bisected to half this
+MAX_GAP_ROUNDS = 6     # gaps listed at most (then: "there may be more")
 CIRCLE_SEGMENTS = 16   # per quarter circle, for cylinders and spheres
 PRISM_SIDES = 48       # tilted cylinders are sliced as prisms with this many sides
 
@@ -293,7 +296,8 @@ def shape_top(shape: Shape) -> float | None:
         return float(_to_world(shape, _box_corners(shape.size))[:, 2].max())
     if shape.kind == "cylinder" and shape.radius and shape.length:
         axis = rotation_matrix(shape.orientation)[:, 2]
-        return shape.position[2] + abs(axis[2]) * shape.length / 2 + math.sqrt(max(0.0, 1 - axis[2] ** 2)) * shape.radius
+        tilt = math.sqrt(max(0.0, 1 - axis[2] ** 2))
+        return shape.position[2] + abs(axis[2]) * shape.length / 2 + tilt * shape.radius
     if shape.kind == "sphere" and shape.radius:
         return shape.position[2] + shape.radius
     if shape.kind == "mesh" and shape.vertices is not None and len(shape.vertices):

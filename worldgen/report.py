@@ -28,6 +28,7 @@ class Result:
     spawn: tuple[float, float, float] | None = None
     spawn_source: str = ""
     robot: str = "burger"
+    robot_source: str = "default"
     findings: list[Finding] = field(default_factory=list)
     metrics: dict = field(default_factory=dict)
     checks: list[str] = field(default_factory=list)
@@ -58,6 +59,7 @@ class Result:
             "path": self.path,
             "ok": self.ok,
             "robot": self.robot,
+            "robot_source": self.robot_source,
             "spawn": [round(v, 4) for v in self.spawn] if self.spawn else None,
             "spawn_source": self.spawn_source,
             "checks": list(self.checks),
@@ -85,17 +87,15 @@ def _clean(value):
 def to_json(results: list[Result]) -> str:
     """``{"ok": bool, "results": [...]}``, indented, keys in a fixed order, ending with a newline."""
     doc = {"ok": all(r.ok for r in results), "results": [r.to_dict() for r in results]}
-    return json.dumps(doc, indent=2, allow_nan=False) + "\n"
+    return json.dumps(doc, indent=2, allow_nan=False, ensure_ascii=False) + "\n"
 
 
 # ------------------------------------------------------------------------------------------------------ text
 
-def _fmt_m(value, unit: str = " m", digits: int = 2) -> str:
+def _fmt_m(value) -> str:
     if value is None:
         return "–"
-    if isinstance(value, float) and not math.isfinite(value):
-        return "inf"
-    return f"{value:.{digits}f}{unit}"
+    return f"{value:.2f} m" if math.isfinite(value) else "inf"
 
 
 def _row(r: Result) -> list[str]:
@@ -139,7 +139,8 @@ def to_text(results: list[Result]) -> str:
         lines.append("  ".join(cell.ljust(w) for cell, w in zip(row, widths)).rstrip())
         if r.spawn:
             x, y, yaw = r.spawn
-            lines.append(f"    {r.robot} spawn ({x:g}, {y:g}, {yaw:g}) {r.spawn_source}".rstrip())
+            robot = r.robot.replace("\\", "/").rsplit("/", 1)[-1]   # a robot file by its name
+            lines.append(f"    {robot} spawn ({x:g}, {y:g}, {yaw:g}) {r.spawn_source}".rstrip())
         for f in r.sorted_findings():
             lines.append(f"    {f.severity:<7} {f.check}: {f.message}")
             if f.where:

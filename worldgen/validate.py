@@ -23,8 +23,8 @@ from dataclasses import replace as dc_replace
 from pathlib import Path
 from typing import Callable, Sequence
 
-from .checks import (SIM_CHECKS, RobotBody, check_enclosed, check_parse, check_spawn_clear, floor_under, robot_body,
-                     sim_findings)
+from .checks import (GEOMETRIC_CHECKS, SIM_CHECKS, RobotBody, check_enclosed, check_parse, check_spawn_clear,
+                     floor_under, robot_body, sim_findings)
 from .errors import InputError, SpecError, WorldFileError
 from .findings import Finding
 from .report import Result
@@ -129,8 +129,8 @@ def input_kind(path: Path) -> str:
 
 
 def plan(paths: Sequence[str | Path], options: Options) -> list[Job]:
-    """The jobs for ``paths`` in order (a package gives one job per launch file). Raises InputError for a
-    missing path or bad options, before anything is validated."""
+    """The jobs for ``paths`` in order (a package gives a job for its own check, then one per launch file).
+    Raises InputError for a missing path or bad options, before anything is validated."""
     if not paths:
         raise InputError("no input given", hint="give world, spec or launch files, or package folders")
     check_options(options)
@@ -145,7 +145,7 @@ def plan(paths: Sequence[str | Path], options: Options) -> list[Job]:
             jobs += _package_jobs(path, options)
             continue
         if kind == "launch":
-            job = _launch_job(path, _read_launch(path), str(given))
+            job = _launch_path_job(path, str(given))
         elif kind == "spec":
             job = _spec_job(path, str(given))
         else:
@@ -176,7 +176,7 @@ def _package_jobs(folder: Path, options: Options) -> list[Job]:
                                                        "(worldgen launch WORLD --package PKG writes one)"))
     jobs = [Job(path=str(folder), pre_checks=["package"], findings=findings, package_only=True)]
     for launch in launches:
-        jobs.append(_apply_options(_launch_job(launch, _read_launch(launch), str(launch)), options))
+        jobs.append(_apply_options(_launch_path_job(launch, str(launch)), options))
     return jobs
 
 
@@ -194,6 +194,19 @@ def _pose3(pose) -> tuple[float, float, float] | None:
         return None
     values = list(pose) + [0.0] * (4 - len(pose))
     return (float(values[0]), float(values[1]), float(values[3]))
+
+
+def _launch_path_job(path: Path, display: str) -> Job:
+    """The job of a launch file given as an input: one that roslaunch could not parse either is a failed
+    ``launch`` check, not bad input."""
+    try:
+        info = _read_launch(path)
+    except WorldFileError as err:
+        where = err.path or str(path)
+        return Job(path=display, pre_checks=["launch"], findings=[Finding(
+            "launch", "error", err.message, where=f"{where}:{err.line}" if err.line else where,
+            fix=err.hint or "fix the launch file so that roslaunch can read it")])
+    return _launch_job(path, info, display)
 
 
 def _launch_job(path: Path, info, display: str) -> Job:
@@ -215,7 +228,7 @@ def _take_launch_pose(job: Job, info, path: Path) -> None:
     if pose is not None:
         job.spawn, job.spawn_source = pose, f"from launch file {path}"
     if info.model in ("burger", "waffle", "waffle_pi"):
-        job.robot, job.robot_source = info.model, f"launch file {path}"
+        job.robot, job.robot_source = info.model, f"from launch file {path}"
 
 
 def _apply_launch(job: Job, info, path: Path) -> None:
@@ -251,8 +264,8 @@ def _spec_job(path: Path, display: str) -> Job:
 
         spec = load_spec(path)
     except SpecError as err:
-        job.findings.append(Finding("parse", "error", str(err), where=str(path),
-                                    fix="fix the spec (worldgen build gives the same message)"))
+        job.findings.append(_parse_error(err, path))
+        job.pre_checks.append("parse")
         return job
     _take_spec_pose(job, spec, path)
     return job
@@ -262,7 +275,7 @@ def _take_spec_pose(job: Job, spec, path: Path) -> None:
     if spec.robot is not None:
         job.spawn = (float(spec.robot.at[0]), float(spec.robot.at[1]), float(spec.robot.yaw))
         job.spawn_source = f"from spec {path}"
-        job.robot, job.robot_source = spec.robot.model, f"spec {path}"
+        job.robot, job.robot_source = spec.robot.model, f"from spec {path}"
 
 
 def _spec_beside(job: Job, world: Path) -> None:
@@ -283,7 +296,7 @@ def _apply_options(job: Job, options: Options) -> Job:
     if options.spawn is not None:
         job.spawn, job.spawn_source = options.spawn, "from --spawn"
     if options.robot is not None:
-        job.robot, job.robot_source = options.robot, "--robot"
+        job.robot, job.robot_source = options.robot, "from --robot"
     if job.spawn is None:
         job.spawn, job.spawn_source = (0.0, 0.0, 0.0), "at the world's origin (no --spawn, launch file or spec)"
     return job
@@ -324,7 +337,7 @@ def run_job(job: Job, options: Options) -> Result:
     """Validate one job: read the world, run the geometric checks here and the simulated ones in one child
     process. Never raises for a problem with the file: problems become findings."""
     result = Result(path=job.path, spawn=job.spawn, spawn_source=job.spawn_source, robot=job.robot,
-                    findings=list(job.findings), checks=list(job.pre_checks))
+                    robot_source=job.robot_source, findings=list(job.findings), checks=list(job.pre_checks))
     if job.package_only:
         result.spawn, result.spawn_source = None, ""
         return result
@@ -334,7 +347,8 @@ def run_job(job: Job, options: Options) -> Result:
         try:
             source = WorldSource(job.spec.with_suffix(".world"), _spec_world_text(job.spec))
         except SpecError as err:
-            result.findings.append(Finding("parse", "error", str(err), where=str(job.spec)))
+            result.checks.append("parse")
+            result.findings.append(_parse_error(err, job.spec))
             return _skip_rest(result, "the spec cannot be built")
         return _run_world(result, source, options)
     if job.world is None:
@@ -342,8 +356,15 @@ def run_job(job: Job, options: Options) -> Result:
     return _run_world(result, WorldSource(job.world), options)
 
 
+def _parse_error(err, path: Path) -> Finding:
+    """A file that cannot be read at all (WorldFileError, SpecError) as the ``parse`` check's finding."""
+    where = err.path or str(path)
+    return Finding("parse", "error", err.message, where=f"{where}:{err.line}" if err.line else where,
+                   fix=err.hint or "fix the file so that Gazebo can load it")
+
+
 def _skip_rest(result: Result, why: str) -> Result:
-    for check in ("parse", "enclosed", "spawn-clear", *SIM_CHECKS):
+    for check in (*GEOMETRIC_CHECKS, *SIM_CHECKS):
         if check not in result.checks:
             result.skipped[check] = why
     return result
@@ -354,8 +375,7 @@ def _run_world(result: Result, source: WorldSource, options: Options) -> Result:
     try:
         scene = source.read(tuple(options.model_paths))
     except WorldFileError as err:
-        result.findings.append(Finding("parse", "error", str(err), where=err.path or str(source.path),
-                                       fix="fix the file so that Gazebo can load it"))
+        result.findings.append(_parse_error(err, source.path))
         return _skip_rest(result, "the world cannot be read")
     outcome = check_parse(scene)
     result.findings += outcome.findings
@@ -372,11 +392,12 @@ def _run_world(result: Result, source: WorldSource, options: Options) -> Result:
         for name in SIM_CHECKS:
             result.skipped[name] = "--skip-sim"
         return result
-    _simulate(result, source, options, body, ground)
+    _simulate(result, source, options, body, ground, floor["floor"])
     return result
 
 
-def _simulate(result: Result, source: WorldSource, options: Options, body: RobotBody, ground: float) -> None:
+def _simulate(result: Result, source: WorldSource, options: Options, body: RobotBody, ground: float,
+              floor: str | None) -> None:
     """The simulated checks in one child process; a crash, a timeout or an error there becomes one error
     finding naming the stage it happened in, and the checks it prevented are skipped."""
     from .errors import WorldgenError
@@ -410,11 +431,10 @@ def _simulate(result: Result, source: WorldSource, options: Options, body: Robot
     for name in SIM_CHECKS:
         if name not in numbers["ran"]:
             result.skipped[name] = "not possible with this robot"
-    outcome = sim_findings(numbers, body, options.lidar_no_hit, ground)
+    outcome = sim_findings(numbers, body, options.lidar_no_hit, ground, floor)
     result.findings += outcome.findings
     result.metrics.update(outcome.metrics)
-    result.metrics["sim_seconds"] = numbers.get("sim_seconds")
-    result.metrics["sim_wall_seconds"] = numbers.get("wall_seconds")
+    result.metrics["sim_seconds"] = numbers.get("sim_seconds")   # (not its wall time: reports are deterministic)
 
 
 def _stage(stage_file: Path) -> str:
