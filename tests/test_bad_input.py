@@ -218,3 +218,12 @@ def test_preview_bad_spawn(tmp_path, spawn):
     assert result.exit_code == 2
     assert "X,Y or X,Y,YAW" in result.stderr
     assert not (tmp_path / "p.png").exists()
+
+
+def test_build_of_a_world_file_says_to_validate_it_instead(tmp_path):
+    world = tmp_path / "room.world"
+    world.write_text("<sdf version='1.6'><world name='default'/></sdf>\n")
+    result = CliRunner().invoke(main, ["build", str(world), "-o", str(tmp_path / "out")])
+    assert result.exit_code == 2
+    assert "is a Gazebo world, not a floorplan spec" in result.output and "worldgen validate" in result.output
+    assert not (tmp_path / "out").exists()

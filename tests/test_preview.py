@@ -13,7 +13,8 @@ from matplotlib.image import imread
 
 from worldgen.cli import main
 from worldgen.preview import (DOOR_COLOUR, OBSTACLE_COLOUR, ROBOT_COLOUR, WALL_COLOUR, WINDOW_COLOUR, Picture,
-                              Spawn, figure, parse_spawn, picture, render)
+                              Spawn, figure, picture, render)
+from worldgen.preview import spawn_from_text as parse_spawn
 from worldgen.scene import Scene
 
 WORLD = """\

@@ -480,7 +480,7 @@ def test_malformed_xml_raises_with_the_line(tmp_path):
         read_world(path)
     err = caught.value
     assert err.line == 3 and err.path == str(path)
-    assert str(err).startswith(f"{path}:3: line 3: not well-formed XML: Unescaped '<'")
+    assert str(err).startswith(f"{path}:3: not well-formed XML: Unescaped '<'")
     assert "fix the tag or attribute there" in str(err)
 
 

@@ -248,4 +248,4 @@ def test_a_corpus_world_with_a_broken_attribute_raises_with_its_line(corpus, tmp
     broken.write_text(text.replace("<link name='Wall_1'>", "<link name='Wall<1'>"))
     with pytest.raises(WorldFileError) as caught:
         read_world(broken)
-    assert caught.value.line == line and f"line {line}: not well-formed XML" in str(caught.value)
+    assert caught.value.line == line and f":{line}: not well-formed XML" in str(caught.value)

@@ -19,7 +19,8 @@ from rosstubs import (SCAN_DRIVER, SYSTEM_PYTHON, TWIST_ECHO, make_stub_packages
                       ros_env, start_roscore, stop_process)
 from worldgen.cli import main
 from worldgen.course import write_course
-from worldgen.launch import format_number, read_launch
+from worldgen.launch import format_number
+from worldgen.launch_reader import read_launch
 
 ENCLOSED = "worlds/Intro-Robotics-UChicago-Spring-2022__warmup_project__worlds_turtlebot3_in_enclosed_room.world"
 

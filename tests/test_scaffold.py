@@ -12,7 +12,7 @@ from click.testing import CliRunner
 from rosstubs import need, ros_env
 from worldgen.cli import main
 from worldgen.errors import InputError
-from worldgen.launch import check_package
+from worldgen.package_check import check_package
 from worldgen.scaffold import package_request
 
 # catkin_create_pkg argument sets: plain class package, everything at once, no dependencies, messages, C++
@@ -171,7 +171,7 @@ def test_existing_folder_needs_force(tmp_path):
 def test_scaffold_with_a_world(tmp_path):
     from lxml import etree
 
-    from worldgen.launch import read_launch
+    from worldgen.launch_reader import read_launch
 
     spec = tmp_path / "box_room.yaml"
     spec.write_text("name: box_room\nrooms:\n  - name: a\n    rect: {center: [1, 2], size: [4, 3]}\n"

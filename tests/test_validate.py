@@ -15,7 +15,8 @@ from lxml import etree
 
 from conftest import EXAMPLES
 from worldgen.cli import main
-from worldgen.validate import Options, parse_spawn, plan, run_job
+from worldgen.spawn import parse_spawn
+from worldgen.validate import Options, plan, run_job
 
 CLASS_WORLD = "worlds/Intro-Robotics-UChicago-Spring-2022__warmup_project__worlds_turtlebot3_in_enclosed_room.world"
 CLASS_LAUNCH = "launch/Intro-Robotics-UChicago-Spring-2022__warmup_project__launch_turtlebot3_in_room.launch"

@@ -3,8 +3,8 @@
 * ``lab_a_spin_circles`` — ``scripts/spin_in_circles.py``: a constant Twist on ``cmd_vel``;
 * ``lab_a_stop_at_wall`` — ``scripts/stop_at_wall.py``: proportional control on the LiDAR's front distance
   (``inf`` from Gazebo and ``0`` from the real LDS-01 both mean "nothing seen");
-* ``class_meeting_02_custom_gazebo_world`` — ``worlds/enclosed_room.world`` (built from the enclosed-room spec
-  shipped in ``templates/course/``) and ``launch/turtlebot3_in_enclosed_room.launch``;
+* ``class_meeting_02_custom_gazebo_world`` — ``worlds/enclosed_room.world`` (built from
+  ``examples/enclosed_room.yaml``, shipped in the wheel too) and ``launch/turtlebot3_in_enclosed_room.launch``;
 * ``intro_robo`` — a metapackage grouping the three.
 
 Each lab package also has a launch file that starts the class world with its node. The node scripts are rendered
@@ -17,7 +17,8 @@ from __future__ import annotations
 from dataclasses import replace
 from pathlib import Path
 
-from .launch import default_launch_name, launch_xml, parse_node, render_template
+from .launch import default_launch_name, launch_xml, parse_node
+from .resources import render_template
 from .scaffold import PackageFiles, PackageRequest, package_files, package_request, world_from_spec
 
 REPOSITORY = "intro_robo"
@@ -37,9 +38,9 @@ def _request(name: str, description: str, maintainer: str | None, exec_only=()) 
 
 def course_files(maintainer: str | None = None) -> PackageFiles:
     """Every file of the class repository, relative to ``src/intro_robo`` (see the module docstring)."""
-    from .resources import templates_dir
+    from .resources import examples_dir
 
-    world_file, world_text, spawn = world_from_spec(templates_dir() / "course" / "enclosed_room.yaml")
+    world_file, world_text, spawn = world_from_spec(examples_dir() / "enclosed_room.yaml")
     worlds = {world_file: world_text}
     launches = {default_launch_name(world_file): launch_xml(world_file, WORLD_PACKAGE, "env", spawn)}
     world_pkg = package_files(

@@ -83,24 +83,12 @@ class Enclosure:
 
 # --------------------------------------------------------------------------------------------------- slicing
 
-def rotation_matrix(q) -> "np.ndarray":
-    """3 × 3 rotation matrix of a unit quaternion (x, y, z, w)."""
-    import numpy as np
-
-    x, y, z, w = q
-    n = math.sqrt(x * x + y * y + z * z + w * w) or 1.0
-    x, y, z, w = x / n, y / n, z / n, w / n
-    return np.array([
-        [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-        [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-        [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)],
-    ])
-
-
 def _to_world(shape: Shape, local) -> "np.ndarray":
     import numpy as np
 
-    return np.asarray(local, dtype=float) @ rotation_matrix(shape.orientation).T + np.asarray(shape.position)
+    from .sdf.poses import quat_matrix
+
+    return np.asarray(local, dtype=float) @ quat_matrix(*shape.orientation).T + np.asarray(shape.position)
 
 
 def _convex_section(points, z: float):
@@ -138,8 +126,10 @@ def _cylinder_section(shape: Shape, z: float):
     import numpy as np
     import shapely
 
+    from .sdf.poses import quat_matrix
+
     r, half = shape.radius, shape.length / 2
-    axis = rotation_matrix(shape.orientation)[:, 2]
+    axis = quat_matrix(*shape.orientation)[:, 2]
     cx, cy, cz = shape.position
     if abs(axis[2]) > 1 - 1e-6:   # upright: an exact circle
         if abs(z - cz) > half:
@@ -292,10 +282,12 @@ def shape_top(shape: Shape) -> float | None:
     """The highest point of a shape (world z), or None for planes and degenerate shapes."""
     import numpy as np
 
+    from .sdf.poses import quat_matrix
+
     if shape.kind == "box" and shape.size is not None:
         return float(_to_world(shape, _box_corners(shape.size))[:, 2].max())
     if shape.kind == "cylinder" and shape.radius and shape.length:
-        axis = rotation_matrix(shape.orientation)[:, 2]
+        axis = quat_matrix(*shape.orientation)[:, 2]
         tilt = math.sqrt(max(0.0, 1 - axis[2] ** 2))
         return shape.position[2] + abs(axis[2]) * shape.length / 2 + tilt * shape.radius
     if shape.kind == "sphere" and shape.radius:

@@ -2,7 +2,7 @@
 
 A world file is read into a :class:`~worldgen.scene.Scene`; a spec goes spec → geometry → SDF text → the same
 reader, so the picture shows what the written world holds, not what the spec meant. Every shape is cut through
-the robot's height band (:data:`worldgen.launch.SLICE_Z`, by :func:`worldgen.enclosure.footprints_between`):
+the robot's height band (:data:`worldgen.spawn.SLICE_Z`, by :func:`worldgen.enclosure.footprints_between`):
 walls and obstacles are filled, lintels over doors and anything else above the robot are left out, so a doorway
 shows as a gap. A spec adds its openings (doors and windows, from the geometry) and its spawn pose.
 
@@ -17,7 +17,6 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Sequence
 
-from .errors import InputError
 from .grid import POST_PREFIX
 from .scene import Scene
 from .spec import Spec, load_spec
@@ -122,16 +121,12 @@ def picture(path: str | Path, model_paths: Sequence[str | Path] = ()) -> Picture
     return spec_picture(load_spec(path)) if is_spec_path(path) else world_picture(path, model_paths)
 
 
-def parse_spawn(text: str, model: str = "burger") -> Spawn:
-    """``X,Y`` or ``X,Y,YAW`` (metres, radians) → Spawn; InputError when it is not that."""
-    parts = [p.strip() for p in text.split(",")]
-    try:
-        values = [float(p) for p in parts]
-    except ValueError:
-        values = []
-    if len(values) not in (2, 3) or not all(math.isfinite(v) for v in values):
-        raise InputError(f"--spawn '{text}' is not X,Y or X,Y,YAW", hint="e.g. --spawn 0.5,-1 or --spawn 0,0,1.57")
-    return Spawn(values[0], values[1], values[2] if len(values) == 3 else 0.0, model)
+def spawn_from_text(text: str, model: str = "burger") -> Spawn:
+    """A ``--spawn X,Y[,YAW]`` value (metres, radians; :func:`worldgen.spawn.parse_spawn`, without a launch
+    file's ``X,Y,Z,YAW``) → Spawn of ``model``; InputError when it is not that."""
+    from .spawn import parse_spawn
+
+    return Spawn(*parse_spawn(text, launch_pose=False), model)
 
 
 def render(pic: Picture, rays: Sequence[Ray] | None = None) -> bytes:
@@ -155,7 +150,7 @@ def figure(pic: Picture, rays: Sequence[Ray] | None = None):
     from matplotlib.figure import Figure
 
     from .enclosure import footprints_between
-    from .launch import ROBOT_RADIUS, SLICE_Z
+    from .spawn import ROBOT_RADIUS, SLICE_Z
 
     with matplotlib.rc_context(_default_style()):
         fig = Figure(figsize=FIGSIZE, dpi=DPI)

@@ -5,8 +5,8 @@ the three-tag expansion of each dependency, ``python-*`` system deps as exec_dep
 :func:`package_files` renders package.xml (format 2) and a CMakeLists.txt in catkin's skeleton shape, plus the
 folders a class package needs (``launch/``, ``worlds/``, ``scripts/``, and ``src/``/``include/NAME`` as catkin
 makes them). A package with launch files also exec_depends on gazebo_ros, turtlebot3_description and xacro; one
-with a world also has a ``models/`` folder that it exports to Gazebo. (:func:`worldgen.launch.check_package` reads
-a package back and says what would break.)
+with a world also has a ``models/`` folder that it exports to Gazebo.
+(:func:`worldgen.package_check.check_package` reads a package back and says what would break.)
 
 Deliberate differences from catkin_create_pkg, each where catkin's output would not work: values are XML-escaped;
 ``catkin_package()`` lists the catkin dependencies in ``CATKIN_DEPENDS`` (catkin_lint calls it an error when
@@ -25,7 +25,8 @@ from pathlib import Path
 from typing import Iterable, Mapping, Sequence
 
 from .errors import InputError
-from .launch import launch_xml, render_template
+from .launch import launch_xml
+from .resources import render_template
 
 # REP 144: lowercase letters, digits and underscores, starting with a letter.
 PACKAGE_NAME = re.compile(r"^[a-z][a-z0-9_]*$")
@@ -229,7 +230,7 @@ def world_from_spec(spec_path: str | Path, model: str = "env") -> tuple[str, str
     """Build the world of the spec at ``spec_path``: its file name ``NAME.world``, its SDF text and the robot's
     spawn pose (x, y, z, yaw): the spec's robot pose, or without one the deepest point of the room."""
     from .geometry import build_geometry
-    from .launch import spec_spawn
+    from .spawn import spec_spawn
     from .sdf.writer import world_sdf
     from .spec import load_spec
 

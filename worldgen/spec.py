@@ -191,13 +191,10 @@ def parse_spec(text: str, source: str | None = None) -> Spec:
 def starter_spec(name: str) -> str:
     """The commented starter spec ``worldgen new NAME`` writes: a 5 m × 5 m room with a door, a window, an
     obstacle and the robot in the middle (from ``templates/spec/starter.yaml.j2``)."""
-    import jinja2
-
-    from .resources import templates_dir
+    from .resources import render_template
 
     check_name(name, "the world name")
-    template = (templates_dir() / "spec" / "starter.yaml.j2").read_text(encoding="utf-8")
-    return jinja2.Template(template, keep_trailing_newline=True, undefined=jinja2.StrictUndefined).render(name=name)
+    return render_template("spec/starter.yaml.j2", name=name)
 
 
 def check_name(name: object, what: str, *, path: str | None = None, line: int | None = None) -> str:
@@ -251,6 +248,19 @@ class _Node:
 
 
 def _compose(text: str, source: str | None) -> _Node | None:
+    """The spec text as _Nodes. libyaml's parser (``yaml.CSafeLoader``, when PyYAML was built with it) is several
+    times faster on big specs; text it refuses is parsed again by the pure-Python parser, whose messages and
+    marks the errors below are worded for, so an error reads the same (same line) with or without libyaml."""
+    fast = getattr(yaml, "CSafeLoader", None)
+    if fast is not None:
+        loader = fast(text)
+        try:
+            root = loader.get_single_node()
+            return None if root is None else _convert(root, loader, {}, set(), source)
+        except yaml.YAMLError:
+            pass   # reported below
+        finally:
+            loader.dispose()
     loader = yaml.SafeLoader(text)
     try:
         root = loader.get_single_node()
@@ -278,7 +288,7 @@ def _convert(node, loader, memo: dict, active: set, source) -> _Node:
     if id(node) in active:
         raise SpecError("a YAML alias refers to itself", path=source, line=line, hint="remove the recursive *alias")
     if isinstance(node, yaml.ScalarNode):
-        out = _Node(loader.construct_object(node), line, style=node.style)
+        out = _Node(loader.construct_object(node), line, style=node.style or None)   # libyaml: '' for plain
     elif isinstance(node, yaml.SequenceNode):
         active.add(id(node))
         out = _Node([_convert(child, loader, memo, active, source) for child in node.value], line)

@@ -15,7 +15,6 @@ says which.
 
 from __future__ import annotations
 
-import math
 import tempfile
 from concurrent.futures import ThreadPoolExecutor, as_completed
 from dataclasses import dataclass, field
@@ -72,21 +71,6 @@ class Job:
 
 
 # ---------------------------------------------------------------------------------------------------- options
-
-def parse_spawn(text: str) -> tuple[float, float, float]:
-    """``X,Y[,YAW]`` (metres, radians; ``X,Y,Z,YAW`` is accepted too, as launch files write it)."""
-    parts = [p.strip() for p in text.split(",")]
-    try:
-        values = [float(p) for p in parts]
-    except ValueError:
-        values = []
-    if len(values) not in (2, 3, 4) or not all(math.isfinite(v) for v in values):
-        raise InputError(f"bad --spawn value {text!r}",
-                         hint="write --spawn X,Y or X,Y,YAW in metres and radians, e.g. --spawn -5.5,-1.0,1.57")
-    if len(values) == 4:
-        values = [values[0], values[1], values[3]]
-    return (values[0], values[1], values[2] if len(values) == 3 else 0.0)
-
 
 def check_options(options: Options) -> None:
     """Refuse option values that make no sense (InputError): a no-hit mode, the robot, model paths."""
@@ -159,14 +143,14 @@ def plan(paths: Sequence[str | Path], options: Options) -> list[Job]:
 
 
 def _read_launch(path: Path):
-    from .launch import read_launch
+    from .launch_reader import read_launch
 
     return read_launch(path)
 
 
 def _package_jobs(folder: Path, options: Options) -> list[Job]:
     """A package gives a row of its own (the package check) and one job per launch file."""
-    from .launch import package_launch_files
+    from .package_check import package_launch_files
 
     findings = _package_findings(folder)
     launches = package_launch_files(folder)
@@ -181,8 +165,9 @@ def _package_jobs(folder: Path, options: Options) -> list[Job]:
 
 
 def _package_findings(folder: Path) -> list[Finding]:
-    """:func:`worldgen.launch.check_package`, its ids put under ``package-`` (``cmake`` → ``package-cmake``)."""
-    from .launch import check_package
+    """:func:`worldgen.package_check.check_package`, its ids put under ``package-`` (``cmake`` →
+    ``package-cmake``)."""
+    from .package_check import check_package
 
     return [f if f.check.startswith("package") else dc_replace(f, check=f"package-{f.check}")
             for f in check_package(folder)]

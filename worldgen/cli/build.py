@@ -13,6 +13,7 @@ from pathlib import Path
 import click
 
 SDF_VERSION_CHOICES = ("1.6", "1.7", "1.8", "1.9")   # = worldgen.sdf.writer.SDF_VERSIONS, without importing it
+WORLD_SUFFIXES = (".world", ".sdf")
 
 
 @click.command("build")
@@ -37,6 +38,10 @@ def build_command(spec: Path, out_dir: Path, sdf_version: str, model_dir: bool, 
     from ..sdf.writer import planned_files
     from ..spec import load_spec
 
+    if spec.suffix.lower() in WORLD_SUFFIXES:
+        raise InputError(f"{spec} is a Gazebo world, not a floorplan spec",
+                         hint="build takes a .yaml/.json spec or a .txt grid (worldgen new NAME writes one); "
+                              "check a world with worldgen validate, draw it with worldgen preview")
     plan = load_spec(spec)
     building = build_geometry(plan)
     if model_dir and not building.walls:

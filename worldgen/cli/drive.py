@@ -63,7 +63,8 @@ def drive(world, behaviour, robot, spawn, target, kp, ki, kd, duration, max_spee
     from ..errors import InputError
     from ..fsio import check_free, write_files
     from ..sim.process import run_isolated
-    from ..validate import input_kind, parse_spawn
+    from ..spawn import parse_spawn
+    from ..validate import input_kind
 
     if not world.exists():
         raise InputError("no such file", path=world, hint="give a .world/.sdf file or a floorplan spec (.yaml)")

@@ -38,7 +38,8 @@ def validate(paths, robot, spawn, launch_file, model_paths, fmt, junit, jobs, li
     """
     from ..fsio import write_file
     from ..report import to_json, to_junit, to_text
-    from ..validate import Options, parse_spawn, plan, run_jobs
+    from ..spawn import parse_spawn
+    from ..validate import Options, plan, run_jobs
 
     options = Options(robot=robot, spawn=parse_spawn(spawn) if spawn is not None else None, launch=launch_file,
                       model_paths=tuple(model_paths), lidar_no_hit=lidar_no_hit, skip_sim=skip_sim)

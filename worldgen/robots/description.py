@@ -16,6 +16,7 @@ import threading
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
+from .. import rospkg
 from ..errors import InputError
 from ..resources import robots_dir
 
@@ -33,46 +34,32 @@ class PackageNotFound(LookupError):
 
 def package_search_path() -> list[Path]:
     """Folders searched for ROS packages: ``ROS_PACKAGE_PATH`` (in order), then worldgen's robots folder."""
-    entries = [Path(p) for p in os.environ.get("ROS_PACKAGE_PATH", "").split(os.pathsep) if p]
-    return entries + [robots_dir().parent]
-
-
-def _package_name(manifest: Path) -> str | None:
-    try:
-        name = ET.parse(manifest).getroot().findtext("name")
-    except (ET.ParseError, OSError):
-        return None
-    return name.strip() if name else None
+    return rospkg.ros_package_path() + [robots_dir().parent]
 
 
 def find_package(name: str) -> Path:
     """The folder of ROS package ``name``: the first folder under the search path whose ``package.xml`` says
-    ``<name>name</name>``. ``ROOT/name`` is tried first; otherwise folders are walked top-down in sorted order,
-    not descending into packages (as rospack does). Raises :class:`PackageNotFound`."""
+    ``<name>name</name>``. ``ROOT`` and ``ROOT/name`` of every root are tried first; then the roots are crawled
+    in order as rospack does (:func:`worldgen.rospkg.crawl`). Raises :class:`PackageNotFound`; a package once
+    found is remembered for the same search path."""
     roots = tuple(package_search_path())
     key = (roots, name)
     if key not in _FOUND:
-        _FOUND[key] = _search(roots, name)
+        _FOUND[key] = _search(rospkg.PackageIndex(roots), name)
     return _FOUND[key]
 
 
 _FOUND: dict[tuple[tuple[Path, ...], str], Path] = {}
 
 
-def _search(roots: tuple[Path, ...], name: str) -> Path:
-    for root in roots:
+def _search(index: rospkg.PackageIndex, name: str) -> Path:
+    for root in index.roots:
         for guess in (root, root / name):
-            if _package_name(guess / "package.xml") == name:
+            if index.name(guess) == name:
                 return guess
-    for root in roots:
-        if not root.is_dir():
-            continue
-        for dirpath, dirnames, filenames in os.walk(root):
-            if "package.xml" in filenames:
-                if _package_name(Path(dirpath) / "package.xml") == name:
-                    return Path(dirpath)
-                dirnames.clear()  # a package does not hold other packages
-            dirnames[:] = sorted(d for d in dirnames if not d.startswith("."))
+    for folder in index.packages():
+        if index.name(folder) == name:
+            return folder
     raise PackageNotFound(name)
 
 

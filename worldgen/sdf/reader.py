@@ -81,7 +81,7 @@ def parse_xml(data: bytes, path: Path) -> etree._Element:
     except etree.XMLSyntaxError as err:
         line = (err.lineno or 1) + skipped_lines
         message = _POSITION_SUFFIX.sub("", err.msg or str(err))
-        raise WorldFileError(f"line {line}: not well-formed XML: {message}", path=path, line=line,
+        raise WorldFileError(f"not well-formed XML: {message}", path=path, line=line,
                              hint="fix the tag or attribute there") from None
 
 

@@ -16,6 +16,8 @@ from pathlib import Path
 
 from lxml import etree
 
+from .. import rospkg
+
 _SAFE_PARSER = dict(resolve_entities=False, no_network=True, load_dtd=False, remove_comments=True)
 STOCK_MODELS = ("ground_plane", "sun")  # Gazebo's own models, stood in for when no model path has them
 
@@ -42,40 +44,6 @@ class Resolved:
 
 def _split_paths(value: str | None) -> list[Path]:
     return [Path(p) for p in (value or "").split(os.pathsep) if p.strip()]
-
-
-def _package_info(package_xml: Path) -> tuple[str, list[Path]]:
-    """A catkin package's name and its exported Gazebo model paths (``${prefix}`` = the package folder)."""
-    folder = package_xml.parent
-    try:
-        root = etree.parse(str(package_xml), etree.XMLParser(**_SAFE_PARSER)).getroot()
-    except (etree.XMLSyntaxError, OSError):
-        return folder.name, []
-    name = (root.findtext("name") or folder.name).strip()
-    exported: list[Path] = []
-    for export in root.iterfind("export/gazebo_ros"):
-        for part in (export.get("gazebo_model_path") or "").split(os.pathsep):
-            part = part.strip().replace("${prefix}", str(folder))
-            if part:
-                exported.append(Path(part))
-    return name, exported
-
-
-def _crawl_packages(root: Path) -> list[Path]:
-    """``package.xml`` files under ``root`` the way catkin finds them (no descent into a package or CATKIN_IGNORE)."""
-    found: list[Path] = []
-    if not root.is_dir():
-        return found
-    for folder, dirs, files in os.walk(root, followlinks=True):
-        if "CATKIN_IGNORE" in files:
-            dirs[:] = []
-            continue
-        if "package.xml" in files:
-            found.append(Path(folder) / "package.xml")
-            dirs[:] = []
-            continue
-        dirs[:] = sorted(d for d in dirs if not d.startswith("."))
-    return found
 
 
 def model_sdf_file(model_dir: Path) -> tuple[Path | None, str]:
@@ -119,32 +87,22 @@ class Resolver:
         env = os.environ if env is None else env
         self.search = [Path(p) for p in model_paths]
         self.search += _split_paths(env.get("GAZEBO_MODEL_PATH")) + _split_paths(env.get("SDF_PATH"))
-        self._ros_roots = _split_paths(env.get("ROS_PACKAGE_PATH"))
+        self._ros_roots = rospkg.ros_package_path(env)
         self._world_file = world_file
         self._packages: dict[str, Path] | None = None
         self._exported: list[Path] = []
 
     def _load_packages(self) -> None:
+        """Crawl ROS_PACKAGE_PATH, then the package holding the world file: a name's first folder wins (a
+        manifest without a readable name counts as its folder's name); model path exports in the same order."""
         if self._packages is not None:
             return
+        own = rospkg.owning_package(self._world_file, levels=4) if self._world_file is not None else None
+        index = rospkg.PackageIndex(self._ros_roots + ([own] if own is not None else []))
         self._packages = {}
-        package_xmls = [x for root in self._ros_roots for x in _crawl_packages(root)]
-        own = self._enclosing_package()
-        if own is not None:
-            package_xmls.append(own)
-        for package_xml in package_xmls:
-            name, exported = _package_info(package_xml)
-            self._packages.setdefault(name, package_xml.parent)
-            self._exported += [p for p in exported if p not in self._exported]
-
-    def _enclosing_package(self) -> Path | None:
-        """The package.xml of the catkin package holding the world file (a world in ``pkg/worlds/``)."""
-        if self._world_file is None:
-            return None
-        for folder in list(Path(self._world_file).resolve().parents)[:4]:
-            if (folder / "package.xml").is_file():
-                return folder / "package.xml"
-        return None
+        for folder in index.packages():
+            self._packages.setdefault(index.name(folder) or folder.name, folder)
+        self._exported = index.model_paths()
 
     def model_dirs(self) -> list[Path]:
         """Every folder searched for ``model://NAME``, in order."""

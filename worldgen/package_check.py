@@ -1,0 +1,151 @@
+"""What would break in a catkin package: its manifest, CMakeLists.txt, scripts and launch files.
+
+:func:`check_package` reads every launch file of the package with :func:`worldgen.launch_reader.read_launch`
+and turns what it cannot resolve into findings, beside the checks of package.xml (with catkin_pkg when it is
+installed), CMakeLists.txt and the scripts' executable bits.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from pathlib import Path
+from typing import Mapping, Sequence
+
+from .errors import WorldFileError
+from .findings import Finding
+from .launch_reader import read_launch
+from .rospkg import manifest_name
+from .spec import ROBOT_MODELS
+
+
+def package_launch_files(pkg_dir: str | Path) -> list[Path]:
+    """Every launch file of a package (``*.launch``, ``*.launch.xml``), sorted; hidden folders and nested
+    packages are skipped."""
+    pkg_dir = Path(pkg_dir)
+    found: list[Path] = []
+    for dirpath, dirnames, filenames in os.walk(pkg_dir):
+        here = Path(dirpath)
+        if here != pkg_dir and "package.xml" in filenames:
+            dirnames.clear()
+            continue
+        dirnames[:] = sorted(d for d in dirnames if not d.startswith("."))
+        found += [here / f for f in filenames if f.endswith((".launch", ".launch.xml"))]
+    return sorted(found)
+
+
+def check_package(pkg_dir: str | Path, *, ros_package_path: Sequence[str | Path] | None = None,
+                  environ: Mapping[str, str] | None = None) -> list[Finding]:
+    """What would break in the catkin package at ``pkg_dir``: package.xml that catkin_pkg cannot parse (or a
+    name catkin rejects), a CMakeLists.txt without ``project(NAME)``/``catkin_package()`` or not installing its
+    launch/worlds/models folders, scripts without their executable bit, launch files that do not parse, name a
+    world file that does not exist or an unknown robot model, and missing exec_depends on the packages the
+    launch files use."""
+    pkg_dir = Path(pkg_dir)
+    findings: list[Finding] = []
+
+    def add(check, severity, message, where=None, fix=None):
+        findings.append(Finding(check, severity, message, where=str(where) if where else None, fix=fix))
+
+    manifest = pkg_dir / "package.xml"
+    if not manifest.is_file():
+        add("package-xml", "error", "no package.xml: this folder is not a catkin package", pkg_dir,
+            "create it with 'worldgen scaffold NAME' or catkin_create_pkg")
+        return findings
+    name, depends = _read_manifest(manifest, add)
+    cmake = pkg_dir / "CMakeLists.txt"
+    if not cmake.is_file():
+        add("cmake", "error", "no CMakeLists.txt", pkg_dir, "every catkin package needs one (see catkin_create_pkg)")
+    else:
+        _check_cmake(cmake, name, pkg_dir, add)
+    scripts = pkg_dir / "scripts"
+    if scripts.is_dir():
+        for script in sorted(p for p in scripts.rglob("*") if p.is_file() and not p.name.startswith(".")):
+            if not os.access(script, os.X_OK):
+                add("script-executable", "error", "script is not executable: rosrun and roslaunch cannot start it",
+                    script, f"chmod +x {script}")
+            elif script.suffix == ".py" and not script.read_bytes().startswith(b"#!"):
+                add("script-executable", "error", "Python script has no #! line", script,
+                    "start it with #!/usr/bin/env python3")
+    used: set[str] = set()
+    for launch in package_launch_files(pkg_dir):
+        _check_launch(launch, name, pkg_dir, used, add, ros_package_path, environ)
+    if depends is not None:
+        for dep in sorted(used - depends - {name}):
+            add("package-depends", "warning", f"launch files use the package {dep} but package.xml does not "
+                f"exec_depend on it", manifest, f"add <exec_depend>{dep}</exec_depend>")
+    return findings
+
+
+def _read_manifest(manifest: Path, add) -> tuple[str, set[str] | None]:
+    try:
+        from catkin_pkg.package import InvalidPackage, parse_package
+    except ImportError:   # catkin_pkg is a test dependency; without it, read the name only
+        name = manifest_name(manifest)
+        if not name:
+            add("package-xml", "error", "package.xml has no readable <name>", manifest, "fix package.xml")
+        return name or manifest.parent.name, None
+    warnings: list[str] = []
+    try:
+        package = parse_package(str(manifest), warnings=warnings)
+    except (InvalidPackage, ValueError, Exception) as err:   # catkin_pkg raises plain Exceptions on bad XML
+        add("package-xml", "error", f"catkin_pkg cannot parse package.xml: {' '.join(str(err).split())}",
+            manifest, "fix package.xml (compare with one made by 'worldgen scaffold')")
+        return manifest_name(manifest) or manifest.parent.name, None
+    for warning in warnings:
+        add("package-xml", "warning", warning, manifest, None)
+    deps = {d.name for d in package.exec_depends + package.build_depends + package.buildtool_depends}
+    return package.name, deps
+
+
+def _check_cmake(cmake: Path, name: str, pkg_dir: Path, add) -> None:
+    text = re.sub(r"#[^\n]*", "", cmake.read_text(encoding="utf-8", errors="replace"))
+    project = re.search(r"\bproject\s*\(\s*([^\s)]+)", text, re.IGNORECASE)
+    if not project:
+        add("cmake", "error", "CMakeLists.txt has no project() call", cmake, f"add project({name})")
+    elif project.group(1) != name:
+        add("cmake", "error", f"project({project.group(1)}) does not match the package name {name}", cmake,
+            f"write project({name})")
+    if not re.search(r"\bcatkin_(package|metapackage)\s*\(", text):
+        add("cmake", "error", "CMakeLists.txt never calls catkin_package()", cmake, "add catkin_package()")
+    installed = set()
+    for match in re.finditer(r"\binstall\s*\(\s*DIRECTORY([^)]*)\)", text, re.IGNORECASE):
+        words = match.group(1).split()
+        installed.update(w.rstrip("/") for w in words[:words.index("DESTINATION")] if "DESTINATION" in words)
+    for folder in ("launch", "worlds", "models"):
+        if (pkg_dir / folder).is_dir() and any((pkg_dir / folder).iterdir()) and folder not in installed:
+            add("cmake-install", "warning", f"{folder}/ is not installed: 'catkin_make install' leaves it out",
+                cmake, f"add install(DIRECTORY {folder} DESTINATION ${{CATKIN_PACKAGE_SHARE_DESTINATION}})")
+
+
+def _check_launch(launch: Path, name: str, pkg_dir: Path, used: set[str], add, ros_package_path, environ) -> None:
+    try:
+        info = read_launch(launch, ros_package_path=ros_package_path, environ=environ or {})
+    except WorldFileError as err:
+        add("launch-parse", "error", err.message, f"{err.path}:{err.line}" if err.line else err.path, err.hint)
+        return
+    for finding in info.findings:
+        if finding.severity in ("error", "warning"):
+            add(finding.check, finding.severity, finding.message, finding.where, finding.fix)
+    if info.world_path is not None and not info.world_path.is_file():
+        add("launch-world", "error", f"the world file {info.world_path} does not exist", launch,
+            "build it (worldgen build SPEC --package DIR) or fix world_name")
+    elif info.world_path is None and info.package == name and info.world_ref:
+        add("launch-world", "error", f"world_name {info.world_ref} cannot be resolved", launch, "fix world_name")
+    known = set(ROBOT_MODELS)
+    models = {r.robot for r in info.robots if r.robot} | ({info.model} if info.model else set())
+    for model in sorted(models - known):
+        add("launch-model", "error", f"unknown TurtleBot3 model {model!r}", launch,
+            f"use one of {', '.join(sorted(known))}")
+    for node in info.nodes:
+        used.add(node.package)
+        if node.package == name:
+            exe = next((p for p in pkg_dir.rglob(node.type) if p.is_file()), None)
+            if exe is None:
+                add("launch-node", "error", f"node {node.full_name}: {node.package}/{node.type} is not in the package",
+                    f"{launch}:{node.line}", f"add scripts/{node.type} or fix type=")
+            elif not os.access(exe, os.X_OK):
+                add("launch-node", "error", f"node {node.full_name}: {exe} is not executable",
+                    f"{launch}:{node.line}", f"chmod +x {exe}")
+    text = launch.read_text(encoding="utf-8", errors="replace")
+    used.update(re.findall(r"\$\(find\s+([^)\s]+)\)", text))

@@ -1,0 +1,151 @@
+"""ROS 1 packages on disk: their manifests, the folders rospack searches, and which package holds a file.
+
+The one place that crawls for ``package.xml`` files, for launch files' ``$(find PKG)``
+(:mod:`worldgen.launch_reader`), xacro's ``$(find PKG)`` and ``package://`` URIs
+(:mod:`worldgen.robots.description`) and Gazebo's ``model://``/``package://`` lookups
+(:mod:`worldgen.sdf.resolve`). Each caller chooses its roots and their order; crawling is done as catkin_pkg and
+rospkg do it: a root that is a package is that package; anything else is walked top-down (following symlinked
+folders, as a workspace's ``src/`` often holds them), not descending into a package nor into a folder holding
+``CATKIN_IGNORE``, skipping hidden folders, in sorted order so that the first match is the same on every machine.
+Manifests are parsed with lxml without entities, DTDs or network access.
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+from typing import Iterable, Mapping
+
+MANIFEST = "package.xml"
+IGNORE_MARKER = "CATKIN_IGNORE"
+
+
+def _manifest_root(manifest: Path):
+    """The root element of a ``package.xml`` (None when it cannot be read or parsed)."""
+    from lxml import etree
+
+    parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False, remove_comments=True,
+                             remove_pis=True, huge_tree=False)
+    try:
+        return etree.parse(str(manifest), parser).getroot()
+    except (OSError, etree.XMLSyntaxError):
+        return None
+
+
+def manifest_name(manifest: str | Path) -> str | None:
+    """The ``<name>`` of a ``package.xml``, stripped; None when the file is missing, unreadable or has none."""
+    root = _manifest_root(Path(manifest))
+    name = root.findtext("name") if root is not None else None
+    return name.strip() if name else None
+
+
+def gazebo_model_paths(package_dir: str | Path) -> list[Path]:
+    """The ``<export><gazebo_ros gazebo_model_path="..."/></export>`` folders of a package, in order, with
+    ``${prefix}`` replaced by the package folder (as gazebo_ros does); ``:``-separated lists are split."""
+    folder = Path(package_dir)
+    root = _manifest_root(folder / MANIFEST)
+    if root is None:
+        return []
+    found: list[Path] = []
+    for export in root.iterfind("export/gazebo_ros"):
+        for part in (export.get("gazebo_model_path") or "").split(os.pathsep):
+            part = part.strip().replace("${prefix}", str(folder))
+            if part:
+                found.append(Path(part))
+    return found
+
+
+def ros_package_path(environ: Mapping[str, str] | None = None) -> list[Path]:
+    """The folders of ``ROS_PACKAGE_PATH`` in ``environ`` (default: the process's), in order, empty entries
+    dropped."""
+    environ = os.environ if environ is None else environ
+    return [Path(p) for p in environ.get("ROS_PACKAGE_PATH", "").split(os.pathsep) if p.strip()]
+
+
+def crawl(root: str | Path) -> list[Path]:
+    """The package folders under ``root`` in crawl order (see the module docstring); ``[root]`` when ``root``
+    is a package itself, ``[]`` when it is no folder."""
+    root = Path(root)
+    if (root / MANIFEST).is_file():
+        return [root]
+    found: list[Path] = []
+    seen: set[str] = set()   # real paths walked: a symlink back up the tree is walked once
+    for dirpath, dirnames, filenames in os.walk(root, followlinks=True):
+        real = os.path.realpath(dirpath)
+        if real in seen or IGNORE_MARKER in filenames:
+            dirnames.clear()
+            continue
+        seen.add(real)
+        if MANIFEST in filenames:
+            found.append(Path(dirpath))
+            dirnames.clear()   # a package holds no other packages
+            continue
+        dirnames[:] = sorted(d for d in dirnames if not d.startswith("."))
+    return found
+
+
+def owning_package(path: str | Path, levels: int | None = None) -> Path | None:
+    """The folder of the package holding the file ``path``: the nearest ancestor of its resolved path with a
+    ``package.xml``, looking at most ``levels`` folders up (all of them when None)."""
+    parents = list(Path(path).resolve().parents)
+    for parent in parents if levels is None else parents[:levels]:
+        if (parent / MANIFEST).is_file():
+            return parent
+    return None
+
+
+def source_tree(package_dir: str | Path) -> Path:
+    """The catkin source space holding ``package_dir``: the nearest of its three closest ancestors that is named
+    ``src`` or holds a top-level ``CMakeLists.txt`` (and is no package), else the package's parent folder."""
+    package_dir = Path(package_dir)
+    for parent in list(package_dir.parents)[:3]:
+        if parent.name == "src" or ((parent / "CMakeLists.txt").exists() and not (parent / MANIFEST).exists()):
+            return parent
+    return package_dir.parent
+
+
+class PackageIndex:
+    """The packages under ordered ``roots``: each root is crawled at most once, each manifest read at most once.
+
+    :meth:`find` looks a name up root by root; :meth:`packages` lists every package folder in crawl order (roots
+    in order), for callers that build their own name map (the first folder of a name wins, as in rospkg).
+    """
+
+    def __init__(self, roots: Iterable[str | Path]):
+        self.roots = [Path(r) for r in roots]
+        self._crawled: dict[Path, list[Path]] = {}
+        self._names: dict[Path, str | None] = {}
+        self._found: dict[str, Path | None] = {}
+
+    def packages(self, root: str | Path | None = None) -> list[Path]:
+        """The package folders under one root, or under every root in order when ``root`` is None."""
+        if root is None:
+            return [folder for r in self.roots for folder in self.packages(r)]
+        root = Path(root)
+        if root not in self._crawled:
+            self._crawled[root] = crawl(root)
+        return self._crawled[root]
+
+    def name(self, folder: str | Path) -> str | None:
+        """The manifest name of the package in ``folder`` (None when it has no readable one)."""
+        folder = Path(folder)
+        if folder not in self._names:
+            self._names[folder] = manifest_name(folder / MANIFEST)
+        return self._names[folder]
+
+    def find(self, name: str) -> Path | None:
+        """The folder of package ``name``: the first root holding it wins; within a root, folders named like the
+        package are tried before the others (each group in crawl order). None when no root holds it."""
+        if name not in self._found:
+            self._found[name] = next(
+                (folder for root in self.roots
+                 for folder in sorted(self.packages(root), key=lambda d: d.name != name)
+                 if self.name(folder) == name), None)
+        return self._found[name]
+
+    def model_paths(self) -> list[Path]:
+        """Every package's Gazebo model path exports (:func:`gazebo_model_paths`), in crawl order, each once."""
+        found: list[Path] = []
+        for folder in self.packages():
+            found += [p for p in gazebo_model_paths(folder) if p not in found]
+        return found

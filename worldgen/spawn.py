@@ -1,0 +1,240 @@
+"""Where a TurtleBot3 may spawn in a world, and the one reader of ``--spawn`` values.
+
+The spawn point of a world file is chosen inside its room: walls and obstacles are sliced in the robot's height
+band (:data:`SLICE_Z`), the free areas the walls close are found (the room holding the building's centre first),
+and the centre of the largest circle inside it is taken. An explicit spawn inside a wall, closer to one than the
+robot's radius (:data:`ROBOT_RADIUS`), or outside the room is refused.
+
+Heavy modules (shapely, the SDF reader) are imported when first used.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Sequence
+
+from .errors import InputError
+
+# Radius of the disc that holds each robot's footprint around base_footprint (ROBOTIS navigation parameters:
+# burger robot_radius 0.105 m; waffle and waffle_pi footprint corners up to 0.257 m from the centre).
+ROBOT_RADIUS = {"burger": 0.105, "waffle": 0.257, "waffle_pi": 0.257}
+# The height band a TurtleBot3 occupies, where walls and obstacles are sliced: above a floor slab (Gazebo's
+# asphalt_plane is a 0.1 m box half sunk into the ground; the validator counts slabs up to 0.1 m as floor) and up
+# to the top of a burger (0.192 m) with some room.
+SLICE_Z = (0.11, 0.3)
+Pose = tuple[float, float, float, float]   # x, y, z, yaw
+_SPAWN_HINTS = {   # --spawn forms → how to write them (see parse_spawn)
+    True: "write --spawn X,Y or X,Y,Z or X,Y,Z,YAW in metres and radians, e.g. --spawn 1.0,-0.5,0,1.57",
+    False: "write --spawn X,Y or X,Y,YAW in metres and radians, e.g. --spawn -5.5,-1.0,1.57",
+}
+
+
+def parse_spawn(text: str, z: bool = False, *, launch_pose: bool = True) -> tuple[float, ...]:
+    """A ``--spawn`` value (metres, radians) → pose; InputError (with the forms to write) for anything else.
+
+    ``z`` (``worldgen launch``, which writes a launch file's pose): ``X,Y[,Z[,YAW]]`` → (x, y, z, yaw).
+    Otherwise (validate, drive, preview: the robot stands on the floor): ``X,Y[,YAW]`` → (x, y, yaw); with
+    ``launch_pose`` a launch file's ``X,Y,Z,YAW`` is taken too, its Z dropped.
+    """
+    parts = [p.strip() for p in text.split(",")]
+    try:
+        values = [float(p) for p in parts]
+    except ValueError:
+        values = []
+    counts = (2, 3, 4) if z or launch_pose else (2, 3)
+    if len(values) not in counts or not all(math.isfinite(v) for v in values):
+        raise InputError(f"bad --spawn value {text!r}", hint=_SPAWN_HINTS[z])
+    if z:
+        values += [0.0] * (4 - len(values))
+        return (values[0], values[1], values[2], values[3])
+    if len(values) == 4:
+        values = [values[0], values[1], values[3]]
+    return (values[0], values[1], values[2] if len(values) == 3 else 0.0)
+
+
+def parse_launch_spawn(text: str) -> Pose:
+    """``worldgen launch``'s ``--spawn X,Y[,Z[,YAW]]`` → (x, y, z, yaw): :func:`parse_spawn` with ``z``."""
+    return parse_spawn(text, z=True)
+
+
+@dataclass(frozen=True)
+class Rooms:
+    """The free floor of a world in the robot's height band.
+
+    ``free`` are the connected free areas (walls and obstacles cut out), largest first; ``closed`` says which of
+    them the walls close (the free area does not reach the outside, as for the validator's ``enclosed`` check);
+    ``centre`` is the centre of the walls' bounding box (the building's origin, as the Building Editor writes
+    it; None when nothing stands in the band); ``blocked`` is the walls' and obstacles' footprint; ``radius``
+    the robot's.
+    """
+
+    free: tuple             # shapely Polygons
+    closed: tuple[bool, ...]
+    centre: tuple[float, float] | None
+    blocked: object         # shapely geometry
+    radius: float
+
+    def fits(self, region) -> bool:
+        """Whether a robot of :attr:`radius` fits somewhere in ``region`` (one of :attr:`free`)."""
+        return not region.buffer(-self.radius, quad_segs=8).is_empty
+
+    def rooms(self) -> list:
+        """The closed free areas the robot fits in, largest first."""
+        return [p for p, c in zip(self.free, self.closed) if c and self.fits(p)]
+
+
+def world_rooms(scene, radius: float = ROBOT_RADIUS["burger"]) -> Rooms:
+    """Slice ``scene`` (a :class:`worldgen.scene.Scene`) in the robot's height band (:data:`SLICE_Z`) and find
+    its free areas and which of them are closed rooms."""
+    import shapely
+
+    from .enclosure import footprints_between, obstacle_union
+
+    prints = footprints_between(scene, *SLICE_Z)
+    if not prints:
+        return Rooms((), (), None, shapely.Polygon(), radius)
+    blocked = obstacle_union(prints)
+    xmin, ymin, xmax, ymax = blocked.bounds
+    margin = 2 * radius + 1.0
+    frame = shapely.box(xmin - margin, ymin - margin, xmax + margin, ymax + margin)
+    parts = sorted(_polygons(frame.difference(blocked)), key=lambda p: (-p.area, p.bounds))
+    closed = tuple(p.exterior.distance(frame.exterior) > 1e-6 for p in parts)
+    return Rooms(tuple(parts), closed, ((xmin + xmax) / 2, (ymin + ymax) / 2), blocked, radius)
+
+
+def deepest_point(rooms: Rooms) -> tuple[float, float] | None:
+    """The centre of the largest circle inside the room holding the building's centre (else inside the largest
+    room), rounded to the centimetre. A world without a closed room: the same inside the walls' bounding box,
+    else the free point nearest the centre. None when nothing stands in the robot's band."""
+    import shapely
+    from shapely.ops import nearest_points, polylabel
+
+    if rooms.centre is None:
+        return None
+    centre = shapely.Point(rooms.centre)
+    candidates = rooms.rooms()
+    if not candidates:
+        inside = shapely.box(*rooms.blocked.bounds)
+        candidates = [p for p in sorted(_polygons(shapely.union_all(list(rooms.free)).intersection(inside)),
+                                        key=lambda p: (-p.area, p.bounds)) if rooms.fits(p)]
+    if candidates:
+        region = next((p for p in candidates if p.covers(centre)), candidates[0])
+        point = polylabel(region, tolerance=0.002)
+    else:   # no room and no space inside the walls' bounds: the free point nearest the centre (1 cm to spare)
+        region = shapely.union_all(list(rooms.free)).buffer(-(rooms.radius + 0.01), quad_segs=8)
+        if region.is_empty:
+            return None
+        point = nearest_points(centre, region)[1]
+    rounded = shapely.Point(round(point.x, 2), round(point.y, 2))
+    if rooms.blocked.distance(rounded) >= rooms.radius and region.covers(rounded):
+        point = rounded
+    return (point.x + 0.0, point.y + 0.0)
+
+
+def spawn_problem(rooms: Rooms, x: float, y: float) -> str | None:
+    """Why a robot cannot spawn at (x, y) — inside a wall or obstacle, closer to one than its radius, outside
+    every closed room of a world that has one — or None when it can."""
+    import shapely
+
+    if rooms.centre is None:
+        return None
+    point = shapely.Point(x, y)
+    if rooms.blocked.covers(point):
+        return "it is inside a wall or an obstacle"
+    rooms_here = rooms.rooms()
+    if rooms_here and not any(p.covers(point) for p in rooms_here):
+        return "it is outside the room" if len(rooms_here) == 1 else "it is outside every room of the world"
+    clearance = rooms.blocked.distance(point)
+    if clearance < rooms.radius:
+        return (f"it is {clearance:.2f} m from a wall or obstacle, and the robot reaches {rooms.radius:.3f} m "
+                "from its centre")
+    return None
+
+
+def spawn_for_world(world_path: str | Path, model: str = "env", spawn: Sequence[float] | None = None
+                    ) -> tuple[Pose, str]:
+    """The spawn pose for a launch file of ``world_path`` and where it came from: ``given`` (``spawn``, checked
+    against the world), ``spec`` (the robot pose of ``NAME.yaml``/``.yml``/``.json`` beside ``NAME.world``, the
+    spec it was built from), ``world`` (the deepest point of the room) or ``open`` (the world has no closed
+    room: the deepest free point inside its walls' bounds).
+
+    Raises InputError when the pose is no place for the robot (see :func:`spawn_problem`) and WorldFileError
+    when the world cannot be read.
+    """
+    from .sdf.reader import read_world
+
+    world_path = Path(world_path)
+    rooms = world_rooms(read_world(world_path), ROBOT_RADIUS.get(model, ROBOT_RADIUS["burger"]))
+    if spawn is not None:
+        return checked_spawn(rooms, spawn, source=world_path), "given"
+    pose = _spec_pose(world_path)
+    if pose is not None:
+        return checked_spawn(rooms, pose, source=world_path, what="the spec's robot pose"), "spec"
+    return checked_spawn(rooms, None, source=world_path), ("world" if rooms.rooms() else "open")
+
+
+def spawn_in_scene(scene, model: str = "env", spawn: Sequence[float] | None = None, *,
+                   source: str | Path | None = None, what: str = "--spawn") -> Pose:
+    """:func:`checked_spawn` for a :class:`worldgen.scene.Scene` and a robot model."""
+    return checked_spawn(world_rooms(scene, ROBOT_RADIUS.get(model, ROBOT_RADIUS["burger"])), spawn,
+                         source=source, what=what)
+
+
+def checked_spawn(rooms: Rooms, spawn: Sequence[float] | None, *, source: str | Path | None = None,
+                  what: str = "--spawn") -> Pose:
+    """``spawn`` (x, y[, z[, yaw]]) as a full pose when the robot may spawn there (InputError naming ``what``
+    otherwise), or, when None, the :func:`deepest_point` (InputError when the robot fits nowhere)."""
+    if spawn is not None:
+        pose = tuple(float(v) for v in spawn) + (0.0,) * (4 - len(spawn))
+        problem = spawn_problem(rooms, pose[0], pose[1])
+        if problem:
+            from .launch import format_number   # not at the top: worldgen.launch imports this module
+
+            raise InputError(f"{what} ({format_number(pose[0])}, {format_number(pose[1])}) is no place for the "
+                             f"robot: {problem}", path=source,
+                             hint="choose a free point inside the room (or leave --spawn out to get one)")
+        return pose
+    point = deepest_point(rooms)
+    if point is None:
+        if rooms.centre is None:   # nothing stands in the robot's way: anywhere will do
+            return (0.0, 0.0, 0.0, 0.0)
+        raise InputError("the robot fits nowhere in this world", path=source, hint="pass --spawn X,Y")
+    return (point[0], point[1], 0.0, 0.0)
+
+
+def spec_spawn(spec, world_text: str, model: str = "env") -> Pose:
+    """The spawn pose for the world built from ``spec``: the spec's robot pose, or without one the deepest point
+    of the room of ``world_text`` (the built world)."""
+    if spec.robot is not None:
+        return (spec.robot.at[0], spec.robot.at[1], 0.0, spec.robot.yaw)
+    from .sdf.reader import read_world_text
+
+    return spawn_in_scene(read_world_text(world_text, source=spec.source), model, source=spec.source)
+
+
+def _spec_pose(world_path: Path) -> Pose | None:
+    from .errors import SpecError
+
+    for suffix in (".yaml", ".yml", ".json"):
+        spec_path = world_path.with_suffix(suffix)
+        if spec_path.is_file():
+            from .spec import load_spec
+            try:
+                spec = load_spec(spec_path)
+            except SpecError:
+                return None
+            if spec.robot is not None:
+                return (spec.robot.at[0], spec.robot.at[1], 0.0, spec.robot.yaw)
+            return None
+    return None
+
+
+def _polygons(geometry) -> list:
+    if geometry.is_empty:
+        return []
+    if geometry.geom_type == "Polygon":
+        return [geometry]
+    return [g for g in getattr(geometry, "geoms", []) if g.geom_type == "Polygon" and not g.is_empty]
+
