@@ -210,7 +210,7 @@ def test_preview_of_a_bad_spec_exits_2_and_writes_nothing(tmp_path):
     assert not png.exists()
 
 
-@pytest.mark.parametrize("spawn", ["1", "a,b", "1,2,3,4", "nan,0"])
+@pytest.mark.parametrize("spawn", ["1", "a,b", "1,2,3,4,5", "nan,0"])
 def test_preview_bad_spawn(tmp_path, spawn):
     spec = tmp_path / "keep.yaml"
     spec.write_text(GOOD)

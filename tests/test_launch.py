@@ -14,7 +14,7 @@ from worldgen.cli import main
 from worldgen.errors import InputError, WorldFileError
 from worldgen.launch import format_number, launch_xml, parse_node
 from worldgen.launch_reader import read_launch
-from worldgen.spawn import parse_launch_spawn as parse_spawn
+from worldgen.spawn import parse_spawn
 from worldgen.spawn import spawn_problem, world_rooms
 
 ENCLOSED = "worlds/Intro-Robotics-UChicago-Spring-2022__warmup_project__worlds_turtlebot3_in_enclosed_room.world"
@@ -85,11 +85,11 @@ def test_numbers_nodes_and_spawn_values():
     for bad in ("pkg", "pkg/", "/type", "pkg/type:9name", "pkg/ty pe"):
         with pytest.raises(InputError):
             parse_node(bad)
-    assert parse_spawn("1, -2") == (1.0, -2.0, 0.0, 0.0)
-    assert parse_spawn("1,2,0.1,1.57") == (1.0, 2.0, 0.1, 1.57)
+    assert parse_spawn("1, -2", z=True) == (1.0, -2.0, 0.0, 0.0)
+    assert parse_spawn("1,2,0.1,1.57", z=True) == (1.0, 2.0, 0.1, 1.57)
     for bad in ("1", "a,b", "1,2,3,4,5", "nan,1"):
         with pytest.raises(InputError):
-            parse_spawn(bad)
+            parse_spawn(bad, z=True)
 
 
 # ----------------------------------------------------------------------------------------------------- spawn

@@ -14,7 +14,6 @@ from matplotlib.image import imread
 from worldgen.cli import main
 from worldgen.preview import (DOOR_COLOUR, OBSTACLE_COLOUR, ROBOT_COLOUR, WALL_COLOUR, WINDOW_COLOUR, Picture,
                               Spawn, figure, picture, render)
-from worldgen.preview import spawn_from_text as parse_spawn
 from worldgen.scene import Scene
 
 WORLD = """\
@@ -132,11 +131,6 @@ def test_rays_hook_draws_lines():
     hit = _colour_at(empty, with_rays, 2.1, 0.4, rays)        # a hit ends in a dot
     assert hit[1] > hit[0] + 0.3 and hit[1] > hit[2] + 0.3   # green
     assert _floor(_colour_at(empty, with_rays, 0.3, -1.9, rays))   # a miss does not
-
-
-def test_parse_spawn():
-    assert parse_spawn("1,-2") == Spawn(1.0, -2.0, 0.0, "burger")
-    assert parse_spawn(" 0.5, 1, 1.57 ", "waffle") == Spawn(0.5, 1.0, 1.57, "waffle")
 
 
 def test_spec_picture_marks_doors_windows_obstacles_and_spawn(tmp_path):

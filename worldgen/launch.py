@@ -19,7 +19,6 @@ from typing import Sequence
 from .errors import InputError
 from .resources import render_template
 from .rospkg import manifest_name
-from .spawn import spec_spawn  # noqa: F401  (worldgen/cli/build.py imports it from here; it lives in spawn)
 from .spec import ROBOT_MODELS
 
 MODEL_CHOICES = ("env",) + ROBOT_MODELS   # "env": the model comes from $(env TURTLEBOT3_MODEL) at run time

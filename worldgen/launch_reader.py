@@ -90,31 +90,17 @@ def package_index(launch_path: str | Path, ros_package_path: Sequence[str | Path
     return rospkg.PackageIndex(roots)
 
 
-def _parser():
-    from lxml import etree
-
-    return etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False, remove_comments=True,
-                           remove_pis=True, huge_tree=False)
-
-
 def _parse_xml(path: Path, what: str = "launch file"):
-    from lxml import etree
+    from .safexml import parse_bytes
 
     try:
         data = Path(path).read_bytes()
     except OSError as err:
         raise WorldFileError(f"cannot read the {what}: {err.strerror or err}", path=path,
                              hint="check the path") from None
-    try:
-        root = etree.fromstring(data, _parser())
-    except etree.XMLSyntaxError as err:
-        line = err.lineno if getattr(err, "lineno", None) else None
-        message = re.sub(r",\s*line \d+, column \d+\s*$", "", err.msg or "")
-        raise WorldFileError(f"the {what} is not well-formed XML: {message}", path=path, line=line,
-                             hint="fix the XML (every tag closed, attributes quoted, '<' and '&' escaped)") from None
-    if root is None:
-        raise WorldFileError(f"the {what} is empty", path=path, hint="a launch file holds one <launch> element")
-    return root
+    return parse_bytes(data, path, what=what,
+                       hint="fix the XML (every tag closed, attributes quoted, '<' and '&' escaped)",
+                       empty_hint="a launch file holds one <launch> element")
 
 
 @dataclass

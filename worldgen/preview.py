@@ -121,14 +121,6 @@ def picture(path: str | Path, model_paths: Sequence[str | Path] = ()) -> Picture
     return spec_picture(load_spec(path)) if is_spec_path(path) else world_picture(path, model_paths)
 
 
-def spawn_from_text(text: str, model: str = "burger") -> Spawn:
-    """A ``--spawn X,Y[,YAW]`` value (metres, radians; :func:`worldgen.spawn.parse_spawn`, without a launch
-    file's ``X,Y,Z,YAW``) → Spawn of ``model``; InputError when it is not that."""
-    from .spawn import parse_spawn
-
-    return Spawn(*parse_spawn(text, launch_pose=False), model)
-
-
 def render(pic: Picture, rays: Sequence[Ray] | None = None) -> bytes:
     """Draw ``pic`` (and LiDAR ``rays``, if given) as PNG bytes, 800 × 800 px, the same bytes for the same input."""
     import io

@@ -22,14 +22,9 @@ IGNORE_MARKER = "CATKIN_IGNORE"
 
 def _manifest_root(manifest: Path):
     """The root element of a ``package.xml`` (None when it cannot be read or parsed)."""
-    from lxml import etree
+    from .safexml import parse_file
 
-    parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False, remove_comments=True,
-                             remove_pis=True, huge_tree=False)
-    try:
-        return etree.parse(str(manifest), parser).getroot()
-    except (OSError, etree.XMLSyntaxError):
-        return None
+    return parse_file(manifest)
 
 
 def manifest_name(manifest: str | Path) -> str | None:

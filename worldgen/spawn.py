@@ -16,6 +16,7 @@ from pathlib import Path
 from typing import Sequence
 
 from .errors import InputError
+from .launch import format_number
 
 # Radius of the disc that holds each robot's footprint around base_footprint (ROBOTIS navigation parameters:
 # burger robot_radius 0.105 m; waffle and waffle_pi footprint corners up to 0.257 m from the centre).
@@ -31,20 +32,19 @@ _SPAWN_HINTS = {   # --spawn forms → how to write them (see parse_spawn)
 }
 
 
-def parse_spawn(text: str, z: bool = False, *, launch_pose: bool = True) -> tuple[float, ...]:
+def parse_spawn(text: str, z: bool = False) -> tuple[float, ...]:
     """A ``--spawn`` value (metres, radians) → pose; InputError (with the forms to write) for anything else.
 
     ``z`` (``worldgen launch``, which writes a launch file's pose): ``X,Y[,Z[,YAW]]`` → (x, y, z, yaw).
-    Otherwise (validate, drive, preview: the robot stands on the floor): ``X,Y[,YAW]`` → (x, y, yaw); with
-    ``launch_pose`` a launch file's ``X,Y,Z,YAW`` is taken too, its Z dropped.
+    Otherwise (validate, drive, preview: the robot stands on the floor): ``X,Y[,YAW]`` → (x, y, yaw); a launch
+    file's ``X,Y,Z,YAW`` is taken too, its Z dropped.
     """
     parts = [p.strip() for p in text.split(",")]
     try:
         values = [float(p) for p in parts]
     except ValueError:
         values = []
-    counts = (2, 3, 4) if z or launch_pose else (2, 3)
-    if len(values) not in counts or not all(math.isfinite(v) for v in values):
+    if len(values) not in (2, 3, 4) or not all(math.isfinite(v) for v in values):
         raise InputError(f"bad --spawn value {text!r}", hint=_SPAWN_HINTS[z])
     if z:
         values += [0.0] * (4 - len(values))
@@ -52,11 +52,6 @@ def parse_spawn(text: str, z: bool = False, *, launch_pose: bool = True) -> tupl
     if len(values) == 4:
         values = [values[0], values[1], values[3]]
     return (values[0], values[1], values[2] if len(values) == 3 else 0.0)
-
-
-def parse_launch_spawn(text: str) -> Pose:
-    """``worldgen launch``'s ``--spawn X,Y[,Z[,YAW]]`` → (x, y, z, yaw): :func:`parse_spawn` with ``z``."""
-    return parse_spawn(text, z=True)
 
 
 @dataclass(frozen=True)
@@ -190,7 +185,6 @@ def checked_spawn(rooms: Rooms, spawn: Sequence[float] | None, *, source: str | 
         pose = tuple(float(v) for v in spawn) + (0.0,) * (4 - len(spawn))
         problem = spawn_problem(rooms, pose[0], pose[1])
         if problem:
-            from .launch import format_number   # not at the top: worldgen.launch imports this module
 
             raise InputError(f"{what} ({format_number(pose[0])}, {format_number(pose[1])}) is no place for the "
                              f"robot: {problem}", path=source,

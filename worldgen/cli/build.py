@@ -50,7 +50,8 @@ def build_command(spec: Path, out_dir: Path, sdf_version: str, model_dir: bool, 
     files = planned_files(building, out_dir, sdf_version=sdf_version, model_dir=model_dir,
                           description=f"{building.name}: built by worldgen from {spec.name}")
     if package_dir is not None:   # the world moves into the package, beside its launch file
-        from ..launch import package_world_files, spec_spawn
+        from ..launch import package_world_files
+        from ..spawn import spec_spawn
 
         world_text = files.pop(out_dir / f"{building.name}.world")
         files.update(package_world_files(package_dir, building.name, world_text, spec_spawn(plan, world_text)))

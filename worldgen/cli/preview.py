@@ -28,13 +28,14 @@ def preview(source: Path, output: Path | None, spawn: str | None, robot: str | N
             model_paths: tuple[Path, ...], force: bool) -> None:
     """Draw SPEC (.yaml, .json, .txt grid) or WORLD (.world, .sdf) from above, to scale: what a TurtleBot3
     meets at its own height (walls, obstacles; doors and windows of a spec), and where it spawns."""
-    from ..preview import picture, render, spawn_from_text
+    from ..preview import Spawn, picture, render
+    from ..spawn import parse_spawn
 
     output = output or Path(f"{source.stem}.png")
     check_free([output], force)   # before the work; write_file checks again
     pic = picture(source, model_paths)
     if spawn is not None:
-        pic = dataclasses.replace(pic, spawn=spawn_from_text(spawn, robot or "burger"))
+        pic = dataclasses.replace(pic, spawn=Spawn(*parse_spawn(spawn), robot or "burger"))
     elif robot is not None and pic.spawn is not None:
         pic = dataclasses.replace(pic, spawn=dataclasses.replace(pic.spawn, model=robot))
     rays = None

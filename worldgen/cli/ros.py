@@ -35,7 +35,7 @@ def launch_command(world: Path, package: str | None, name: str | None, model: st
     from ..errors import InputError
     from ..fsio import write_file
     from ..launch import default_launch_name, format_number, launch_xml, package_name_of, parse_node
-    from ..spawn import parse_launch_spawn, spawn_for_world
+    from ..spawn import parse_spawn, spawn_for_world
 
     node_refs = [parse_node(n) for n in nodes]
     world_pkg = world.resolve().parent.parent if world.resolve().parent.name == "worlds" else None
@@ -51,7 +51,7 @@ def launch_command(world: Path, package: str | None, name: str | None, model: st
         launch_name += ".launch"
     if Path(launch_name).name != launch_name:
         raise InputError(f"--name {name!r} is a path, not a file name", hint="use -o DIR for the folder")
-    pose, source = spawn_for_world(world, model, parse_launch_spawn(spawn) if spawn else None)
+    pose, source = spawn_for_world(world, model, parse_spawn(spawn, z=True) if spawn else None)
     text = launch_xml(world.name, package, model, pose, node_refs, launch_name=launch_name)
     folder = output if output is not None else (world_pkg / "launch" if world_pkg is not None else Path("."))
     target = write_file(folder / launch_name, text, force=force)

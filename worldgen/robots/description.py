@@ -13,12 +13,12 @@ from __future__ import annotations
 import os
 import re
 import threading
-import xml.etree.ElementTree as ET
 from pathlib import Path
 
 from .. import rospkg
-from ..errors import InputError
+from ..errors import InputError, WorldFileError
 from ..resources import robots_dir
+from ..safexml import parse_bytes
 
 MODELS = ("burger", "waffle", "waffle_pi")
 _XACRO_LOCK = threading.Lock()  # xacro keeps its state in module globals
@@ -90,10 +90,13 @@ def robot_urdf(robot: str | Path = "burger", mappings: dict[str, str] | None = N
     if path.suffix == ".urdf":
         try:
             text = path.read_text(encoding="utf-8")
-            ET.fromstring(text)
-        except (OSError, UnicodeDecodeError, ET.ParseError) as err:
+            parse_bytes(text.encode("utf-8"), path, hint="fix the URDF file (it must be well-formed XML)")
+        except (OSError, UnicodeDecodeError) as err:
             raise InputError(f"cannot read the robot description: {err}", path=path,
                              hint="fix the URDF file (it must be well-formed XML)") from None
+        except WorldFileError as err:
+            raise InputError(f"cannot read the robot description: {err.message}", path=path, line=err.line,
+                             hint=err.hint) from None
         return text
     return _process_xacro(path, dict(mappings or {}))
 

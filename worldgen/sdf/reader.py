@@ -13,7 +13,6 @@ Finding ids: ``sdf-version``, ``structure``, ``pose``, ``include``, ``mesh``, ``
 from __future__ import annotations
 
 import math
-import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -22,6 +21,7 @@ from lxml import etree
 
 from ..errors import WorldFileError
 from ..findings import Finding, Severity
+from ..safexml import parse_bytes
 from ..scene import Scene, Shape
 from . import poses
 from .meshes import MeshCache
@@ -30,7 +30,6 @@ from .resolve import STOCK_MODELS, Resolved, Resolver, model_sdf_file
 KNOWN_VERSIONS = ("1.4", "1.5", "1.6", "1.7", "1.8", "1.9")
 _INCLUDE_CHILDREN = {"uri", "name", "pose", "static", "plugin", "placement_frame"}
 _MAX_INCLUDE_DEPTH = 16
-_POSITION_SUFFIX = re.compile(r",\s*line \d+, column \d+\s*$")
 _MODEL_PATH_FIX = ("put the folder that holds it on GAZEBO_MODEL_PATH (or pass --model-path DIR to worldgen)")
 
 
@@ -54,35 +53,17 @@ def read_world(path, *, model_paths=(), apply_state=True) -> Scene:
         raise WorldFileError("no such file", path=path, hint="check the path and the file name") from None
     except OSError as err:
         raise WorldFileError(f"cannot be read: {err.strerror}", path=path, hint="check its permissions") from None
-    return _Reader(path, model_paths).read(parse_xml(data, path), apply_state)
+    return _Reader(path, model_paths).read(_parse(data, path), apply_state)
 
 
 def read_world_text(text: str, *, source: str | Path | None = None, model_paths=(), apply_state=True) -> Scene:
     """Read SDF text; ``source`` (a path, maybe fictitious) names it in findings and anchors relative paths."""
     label = Path(source) if source is not None else Path("<string>")
-    return _Reader(label, model_paths).read(parse_xml(text.encode("utf-8"), label), apply_state)
+    return _Reader(label, model_paths).read(_parse(text.encode("utf-8"), label), apply_state)
 
 
-def parse_xml(data: bytes, path: Path) -> etree._Element:
-    """Parse XML safely (no entities, no DTD, no network); comments dropped; line numbers kept.
-
-    Leading blank lines and a byte-order mark before ``<?xml`` are tolerated. Raises WorldFileError on bad XML.
-    """
-    if data.startswith(b"\xef\xbb\xbf"):
-        data = data[3:]
-    stripped = data.lstrip()
-    skipped_lines = data[: len(data) - len(stripped)].count(b"\n")
-    if not stripped:
-        raise WorldFileError("the file is empty", path=path, hint="a Gazebo world starts with <sdf version='1.6'>")
-    parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False, remove_comments=True,
-                             remove_pis=True)
-    try:
-        return etree.fromstring(stripped, parser)
-    except etree.XMLSyntaxError as err:
-        line = (err.lineno or 1) + skipped_lines
-        message = _POSITION_SUFFIX.sub("", err.msg or str(err))
-        raise WorldFileError(f"not well-formed XML: {message}", path=path, line=line,
-                             hint="fix the tag or attribute there") from None
+def _parse(data: bytes, path: Path) -> etree._Element:
+    return parse_bytes(data, path, empty_hint="a Gazebo world starts with <sdf version='1.6'>")
 
 
 # ----------------------------------------------------------------------------------------------------------------
@@ -438,7 +419,7 @@ class _Reader:
                       where, "break the include cycle")
             return None
         try:
-            root = parse_xml(path.read_bytes(), path)
+            root = _parse(path.read_bytes(), path)
         except (WorldFileError, OSError) as err:
             self.note("include", "error", f"included model {resolved.uri} cannot be read: {err}", where,
                       "fix the included file")

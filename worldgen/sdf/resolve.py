@@ -17,8 +17,8 @@ from pathlib import Path
 from lxml import etree
 
 from .. import rospkg
+from ..safexml import parser
 
-_SAFE_PARSER = dict(resolve_entities=False, no_network=True, load_dtd=False, remove_comments=True)
 STOCK_MODELS = ("ground_plane", "sun")  # Gazebo's own models, stood in for when no model path has them
 
 
@@ -54,7 +54,7 @@ def model_sdf_file(model_dir: Path) -> tuple[Path | None, str]:
     config = model_dir / "model.config"
     if config.is_file():
         try:
-            root = etree.parse(str(config), etree.XMLParser(**_SAFE_PARSER)).getroot()
+            root = etree.parse(str(config), parser()).getroot()
             entries = [(e.get("version") or "0", (e.text or "").strip()) for e in root.iterfind("sdf")]
         except (etree.XMLSyntaxError, OSError) as err:
             entries, note = [], f"{config} cannot be read ({err}); used model.sdf"

@@ -47,6 +47,12 @@ def _el(parent, tag: str, text: str | None = None, **attrs: str):
     return element
 
 
+def _leaves(parent, **texts: str) -> None:
+    """One child element per keyword, in order, each holding only its text."""
+    for tag, text in texts.items():
+        _el(parent, tag, text)
+
+
 def _pose(parent, x: float = 0.0, y: float = 0.0, z: float = 0.0, yaw: float = 0.0, pitch: float = 0.0) -> None:
     _el(parent, "pose", _vec(x, y, z, 0.0, pitch, yaw))
 
@@ -125,13 +131,8 @@ def _sun(world) -> None:
     light = _el(world, "light", name="sun", type="directional")
     _el(light, "cast_shadows", "1")
     _pose(light, z=10.0)
-    _el(light, "diffuse", "0.8 0.8 0.8 1")
-    _el(light, "specular", "0.2 0.2 0.2 1")
-    attenuation = _el(light, "attenuation")
-    _el(attenuation, "range", "1000")
-    _el(attenuation, "constant", "0.9")
-    _el(attenuation, "linear", "0.01")
-    _el(attenuation, "quadratic", "0.001")
+    _leaves(light, diffuse="0.8 0.8 0.8 1", specular="0.2 0.2 0.2 1")
+    _leaves(_el(light, "attenuation"), range="1000", constant="0.9", linear="0.01", quadratic="0.001")
     _el(light, "direction", "-0.5 0.1 -0.9")
 
 
@@ -163,21 +164,12 @@ def _plane(parent, size: float) -> None:
 def _physics(world) -> None:
     """ODE at 1 kHz, real time, as in ROBOTIS's TurtleBot3 worlds."""
     physics = _el(world, "physics", type="ode")
-    _el(physics, "max_step_size", "0.001")
-    _el(physics, "real_time_factor", "1")
-    _el(physics, "real_time_update_rate", "1000")
+    _leaves(physics, max_step_size="0.001", real_time_factor="1", real_time_update_rate="1000")
     ode = _el(physics, "ode")
-    solver = _el(ode, "solver")
-    _el(solver, "type", "quick")
-    _el(solver, "iters", "150")
-    _el(solver, "precon_iters", "0")
-    _el(solver, "sor", "1.4")
-    _el(solver, "use_dynamic_moi_rescaling", "1")
-    constraints = _el(ode, "constraints")
-    _el(constraints, "cfm", "0.00001")
-    _el(constraints, "erp", "0.2")
-    _el(constraints, "contact_max_correcting_vel", "2000")
-    _el(constraints, "contact_surface_layer", "0.01")
+    _leaves(_el(ode, "solver"), type="quick", iters="150", precon_iters="0", sor="1.4",
+            use_dynamic_moi_rescaling="1")
+    _leaves(_el(ode, "constraints"), cfm="0.00001", erp="0.2", contact_max_correcting_vel="2000",
+            contact_surface_layer="0.01")
 
 
 def _gui_camera(world, building: Building) -> None:
