@@ -184,9 +184,19 @@ def test_starter_spec_loads_and_says_what_new_promises(tmp_path):
     xs = [v[0] for v in room.vertices]
     ys = [v[1] for v in room.vertices]
     assert (max(xs) - min(xs), max(ys) - min(ys)) == (5, 5)
-    assert sorted(o.type for o in room.openings) == ["door", "window"]
+    assert [o.type for o in room.openings] == ["window"]   # a door to the outside would open the room
+    assert "# - {type: door" in starter_spec("lab_one")   # offered, commented out
     assert len(spec.obstacles) == 1
     assert spec.robot.at == ((min(xs) + max(xs)) / 2, (min(ys) + max(ys)) / 2)
+
+
+def test_starter_spec_passes_validation_as_written(tmp_path):
+    spec = tmp_path / "lab.yaml"
+    assert CliRunner().invoke(main, ["new", "lab", "-o", str(spec)]).exit_code == 0
+    result = CliRunner().invoke(main, ["validate", str(spec), "--skip-sim", "--format", "json"])
+    assert result.exit_code == 0, result.output
+    (report,) = json.loads(result.output)["results"]
+    assert report["metrics"]["enclosed"] is True and report["metrics"]["min_clearance_m"] > 0.5
 
 
 def test_new_writes_refuses_existing_and_forces(tmp_path):

@@ -16,8 +16,9 @@ from ..spec import starter_spec
               help="The spec file to write (default: NAME.yaml in the current folder).")
 @click.option("--force", is_flag=True, help="Overwrite the file if it exists.")
 def new(name: str, output: Path | None, force: bool) -> None:
-    """Write a starter floorplan spec NAME.yaml: a 5 m x 5 m room with a door, a window, an obstacle and the
-    robot in the middle, every key commented. Build it with `worldgen build NAME.yaml`."""
+    """Write a starter floorplan spec NAME.yaml: a closed 5 m x 5 m room with a window, an obstacle and the
+    robot in the middle (a door offered, commented out), every key commented. Build it with
+    `worldgen build NAME.yaml`."""
     text = starter_spec(name)
     path = write_file(output or Path(f"{name}.yaml"), text, force=force)
     click.echo(f"wrote {path}")
