@@ -64,11 +64,13 @@ def run(args, env=None) -> tuple[float, subprocess.CompletedProcess]:
 
 
 def sim_ratio(world: Path, spawn) -> float:
-    """Simulated seconds per wall second of the job validate runs in its child process, run here."""
+    """Simulated seconds per wall second of the job validate runs in its child process, run here on the scene
+    validate reads once and hands over."""
     sys.path.insert(0, str(REPO))
-    from worldgen.checks import simulate
+    from worldgen.sdf.reader import read_world
+    from worldgen.sim.validate_job import sim_numbers
 
-    numbers = simulate(world=str(world), spawn=spawn)
+    numbers = sim_numbers(read_world(world), spawn=spawn)
     return numbers["sim_seconds"] / numbers["wall_seconds"]
 
 
@@ -94,7 +96,7 @@ def main() -> None:
         ratios = [sim_ratio(class_args[0], doc["spawn"]) for _ in range(3)]
         print(f"  simulated {doc['metrics']['sim_seconds']:.1f} s of settle + scan + spin + stop-at-wall; "
               f"sim/real ratio median {statistics.median(ratios):.0f}x (the simulator job as validate's child runs "
-              "it: world read, robot load, physics)")
+              "it: robot load, physics)")
 
         worlds = []
         for i in range(50):

@@ -23,6 +23,8 @@ CASES = [
     ("unknown-opening-key", OPENINGS + "      - {type: door, wall: 0, widht: 1}\n", 6,
      ["unknown key 'widht' in opening 1 of room 'main'; did you mean 'width'?"]),
     ("duplicate-key", "name: t\nname: u\n", 2, ["'name' is given twice", "line 1"]),
+    ("duplicate-key-after-merge", "name: t\nrooms:\n  - &a {name: a, rect: {center: [0, 0], size: [3, 3]}}\n"
+                                  "  - <<: *a\n    name: b\n    name: c\n", 6, ["'name' is given twice", "line 5"]),
     ("missing-name", "rooms: []\n", 1, ["has no 'name'", "name: my_world"]),
     ("missing-shape", ROOM.replace("    rect: {center: [0, 0], size: [5, 5]}\n", ""), 3,
      ["room 'main' needs exactly one of 'rect' or 'polygon'"]),
@@ -40,6 +42,12 @@ CASES = [
      ["must be a number, not the text '5'"]),
     ("wrong-type-bool", ROOM + "robot: {at: [0, true]}\n", 5, ["must be a number, not true"]),
     ("wrong-type-point", ROOM + "robot: {at: [0, 1, 2]}\n", 5, ["must be a point [x, y]", "of 3 numbers"]),
+    ("wrong-length-size", "name: t\nrooms:\n  - name: a\n    rect: {center: [0, 0], size: [5]}\n", 4,
+     ["size of room 'a' must be [width, depth] in metres, not a list of 1 number (e.g. size: [5, 4])"]),
+    ("wrong-length-box", ROOM + "obstacles:\n  - {shape: box, size: [1, 1], at: [0, 0]}\n", 6,
+     ["size of obstacle 1 must be [x, y, z] in metres, not a list of 2 numbers"]),
+    ("grid-rows-unquoted-list", "name: t\ngrid:\n  rows:\n    - '###'\n    - #R#\n", 5,
+     ["grid row 2 must be a line of text, not nothing", "an unquoted # starts a comment"]),
     ("wrong-type-rooms", "name: t\nrooms: {name: a}\n", 2, ["rooms must be a list"]),
     ("wrong-type-wall-index", OPENINGS + "      - {type: door, wall: 1.5}\n", 6, ["must be a wall number"]),
     ("zero-size", "name: t\nrooms:\n  - name: a\n    rect: {center: [0, 0], size: [0, 5]}\n", 4,
@@ -127,6 +135,20 @@ CASES = [
     ("grid-folded", "name: t\ngrid:\n  rows: >\n    ###\n    # #\n", 3, ["folded into one line"]),
     ("grid-zero-cell", "name: t\ngrid:\n  cell: 0\n  rows: |\n    ###\n", 3, ["grid cell must be more than 0"]),
     ("recursive-alias", "name: t\nrooms: &r [*r]\n", 2, ["refers to itself"]),
+    ("two-documents", ROOM + "---\nname: u\n", 5,
+     ["expected a single document in the stream but found another document", "one YAML document"]),
+    ("nested-too-deeply", "name: t\nrooms: " + "[" * 3000 + "]" * 3000 + "\n", None, ["nested too deeply"]),
+    ("huge-integer", "name: t\nrooms:\n  - name: a\n    rect: {center: [0, 0], size: [5, " + "9" * 400 + "]}\n", 4,
+     ["depth (y size) of room 'a' is a 400-digit number"]),
+    ("huge-integer-name", "name: " + "9" * 400 + "\nrooms: []\n", 1, ["must be text, not a very long number"]),
+    ("polygon-corner-within-1mm", "name: t\nrooms:\n  - name: a\n    polygon:\n      - [0, 0]\n      - [4, 0]\n"
+                                  "      - [4, 0.0005]\n      - [0, 4]\n", 7,
+     ["corner 2 of room 'a' repeats corner 1 (4, 0) to within 0.5 mm"]),
+    ("opening-on-too-short-wall", "name: t\nwalls: {thickness: 0.5}\nsegments:\n"
+                                  "  - {from: [0, 0], to: [0.2, 0], openings: [{type: door}]}\n", 4,
+     ["door 1 of segment 1 is on wall 0, which is 0.2 m long", "no room for an opening"]),
+    ("empty-material", "name: t\nwalls: {material: ''}\nrooms: []\n", 2, ["walls material is empty"]),
+    ("robot-yaw-degrees-over-360", ROOM + "robot: {at: [0, 0], yaw: 400}\n", 5, ["for 400 degrees write 0.6981"]),
 ]
 
 
@@ -218,6 +240,45 @@ def test_preview_bad_spawn(tmp_path, spawn):
     assert result.exit_code == 2
     assert "X,Y or X,Y,YAW" in result.stderr
     assert not (tmp_path / "p.png").exists()
+
+
+# Errors only the geometry finds: `worldgen build` still names the file, the line and the fix, counting segments
+# and obstacles from 1 as the spec's own messages do.
+GEOMETRY_CASES = [
+    ("segments-too-sharp", "name: t\nsegments:\n  - {from: [0, 0], to: [4, 0]}\n  - {from: [4, 0], to: [0, 0.01]}\n",
+     3, "segment 1 and segment 2 meet at 0.14°, too sharp a corner"),
+    ("default-obstacle-name-taken", "name: t\nobstacles:\n  - {shape: sphere, radius: 1, at: [0, 0], name: obstacle_1}\n"
+                                    "  - {shape: sphere, radius: 1, at: [3, 0]}\n",
+     4, "obstacle 2 has no name, and the one it gets, 'obstacle_1', is already used by the obstacle on line 3"),
+]
+
+
+@pytest.mark.parametrize("text, line, words", [c[1:] for c in GEOMETRY_CASES], ids=[c[0] for c in GEOMETRY_CASES])
+def test_geometry_errors_name_the_line_and_count_from_one(tmp_path, text, line, words):
+    spec = tmp_path / "bad.yaml"
+    spec.write_text(text)
+    result = CliRunner().invoke(main, ["build", str(spec), "-o", str(tmp_path / "out")])
+    assert result.exit_code == 2
+    assert result.stderr.startswith(f"worldgen: error: {spec}:{line}: {words}"), result.stderr
+    assert result.stderr.count("\n") == 1 and not (tmp_path / "out").exists()
+
+
+def test_unwritable_output_is_one_line_and_writes_nothing(tmp_path):
+    spec = tmp_path / "keep.yaml"
+    spec.write_text(GOOD)
+    blocker = tmp_path / "a_file"
+    blocker.write_text("")
+    runner = CliRunner()
+    result = runner.invoke(main, ["build", str(spec), "-o", str(blocker / "out")])
+    assert result.exit_code == 2
+    assert result.stderr == f"worldgen: error: cannot write {blocker / 'out'}: Not a directory " \
+                            "(check that the output folder can be created and written to)\n"
+    (tmp_path / "out" / "keep.world").mkdir(parents=True)   # a folder where the world goes: kept, even with --force
+    result = runner.invoke(main, ["build", str(spec), "-o", str(tmp_path / "out"), "--force"])
+    assert result.exit_code == 2
+    assert result.stderr.startswith(f"worldgen: error: {tmp_path / 'out' / 'keep.world'} is a folder")
+    assert (tmp_path / "out" / "keep.world").is_dir() and len(list((tmp_path / "out").iterdir())) == 1
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a_file", "keep.yaml", "out"]
 
 
 def test_build_of_a_world_file_says_to_validate_it_instead(tmp_path):

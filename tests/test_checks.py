@@ -44,7 +44,7 @@ def test_gap_finding_says_where_how_wide_and_whether_the_robot_fits():
     assert "can drive out" in finding.message
     assert out.metrics["enclosed"] is False and out.metrics["robot_enclosed"] is False
     [gap] = out.metrics["gaps"]
-    assert math.dist(gap["centre"], (0.75, -2.5)) < 0.3 and gap["width"] == pytest.approx(0.5, abs=0.01)
+    assert gap["centre"] == pytest.approx([0.75, -2.5], abs=1e-3) and gap["width"] == pytest.approx(0.5, abs=0.01)
     assert gap["robot_passes"] is True
     # 0.25 m: the burger (0.178 m) drives out, the waffle (0.306 m) does not, but its beams still leave
     assert errors(check_enclosed(square_room(door=(0, 3.0, 0.25)), (0.0, 0.0, 0.0), BURGER))
@@ -77,6 +77,13 @@ def test_no_walls_and_outside_the_room_are_told_apart():
     x0, y0, x1, y1 = outside.metrics["nearest_room"]
     assert (x0, x1) == pytest.approx((-7.425, -2.575), abs=0.002) and (y0, y1) == pytest.approx((-3.425, 1.425),
                                                                                                abs=0.002)
+
+
+def test_a_far_away_spawn_is_told_in_readable_numbers():
+    [far] = errors(check_enclosed(square_room(), (1e308, -2.5, 0.0), BURGER))
+    assert far.where == "spawn (1e+308, -2.50)" and "the spawn (1e+308, -2.50) is outside the walls" in far.message
+    x0, y0, x1, y1 = check_enclosed(square_room(), (1e9, 0.0, 0.0), BURGER).metrics["nearest_room"]
+    assert (x0, y0, x1, y1) == pytest.approx((-2.425, -2.425, 2.425, 2.425), abs=0.002)
 
 
 def test_spawn_inside_a_wall_fails_both_geometric_checks():
@@ -157,7 +164,7 @@ def numbers(**parts):
 
 
 def test_good_numbers_give_no_findings_and_the_metrics():
-    out = sim_findings(numbers(), BURGER, "inf")
+    out = sim_findings(numbers(), "inf")
     assert out.findings == []
     assert out.metrics["lidar_no_hit_beams"] == 0 and out.metrics["spin_drift_m"] == 0.01
     assert out.metrics["stop_distance_m"] == 0.51 and out.metrics["lidar_nearest_bearing_deg"] == 90.0
@@ -165,35 +172,37 @@ def test_good_numbers_give_no_findings_and_the_metrics():
 
 def test_no_hit_beams_warn_with_the_reading_of_the_chosen_convention():
     some = {"no_hit": 22, "no_hit_bearings_deg": [32.0], "no_hit_reading": math.inf}
-    [gazebo] = sim_findings(numbers(lidar=some), BURGER, "inf").findings
+    [gazebo] = sim_findings(numbers(lidar=some), "inf").findings
     assert gazebo.severity == "warning" and "22 of 360 beams" in gazebo.message and "read inf" in gazebo.message
-    [robot] = sim_findings(numbers(lidar={**some, "no_hit_reading": 0.0}), BURGER, "zero").findings
+    [robot] = sim_findings(numbers(lidar={**some, "no_hit_reading": 0.0}), "zero").findings
     assert "read 0 (as on the real robot)" in robot.message
-    [blind] = sim_findings(numbers(lidar={"no_hit": 360}), BURGER, "inf").findings
+    [blind] = sim_findings(numbers(lidar={"no_hit": 360}), "inf").findings
     assert "all 360 beams hit nothing" in blind.message
 
 
 def test_spin_and_stop_failures_are_errors_naming_what_was_touched():
     touched = sim_findings(numbers(spin={"touched": ["room/Wall_1"], "contact_points": [
-        {"shape": "room/Wall_1", "link": "base_link", "time": 0.4}]}), BURGER, "inf")
+        {"shape": "room/Wall_1", "link": "base_link", "time": 0.4}]}), "inf")
     [f] = errors(touched, "spin")
     assert "touched room/Wall_1" in f.message and "base_link touched room/Wall_1" in f.where
-    drift = sim_findings(numbers(spin={"drift": 0.08}), BURGER, "inf")
+    drift = sim_findings(numbers(spin={"drift": 0.08}), "inf")
     assert "drifted 8.0 cm" in errors(drift, "spin")[0].message
-    bump = sim_findings(numbers(stop={"touched": ["crate"]}), BURGER, "inf")
+    bump = sim_findings(numbers(stop={"touched": ["crate"]}), "inf")
     assert "touched crate" in errors(bump, "stop-at-wall")[0].message
-    short = sim_findings(numbers(stop={"distance": 0.7}), BURGER, "inf")
-    assert short.findings[0].severity == "warning" and "0.70 m" in short.findings[0].message
-    nothing = sim_findings(numbers(stop={"no_wall": True, "distance": None, "range": 3.5}), BURGER, "inf")
+    short = sim_findings(numbers(stop={"distance": 0.7}), "inf")
+    assert short.findings[0].severity == "warning" and "ended 0.70 m from the wall" in short.findings[0].message
+    [lost] = sim_findings(numbers(stop={"distance": None}), "inf").findings
+    assert lost.severity == "warning" and "ended with no wall in range ahead instead of 0.5 m" in lost.message
+    nothing = sim_findings(numbers(stop={"no_wall": True, "distance": None, "range": 3.5}), "inf")
     assert nothing.findings[0].severity == "info" and "no wall within 3.5 m" in nothing.findings[0].message
 
 
 def test_settle_failures():
-    tipped = sim_findings(numbers(settle={"tilt_deg": 40.0}), BURGER, "inf")
+    tipped = sim_findings(numbers(settle={"tilt_deg": 40.0}), "inf")
     assert "tipped 40°" in errors(tipped, "settle")[0].message
-    fell = sim_findings(numbers(settle={"z": -0.5}), BURGER, "inf")
+    fell = sim_findings(numbers(settle={"z": -0.5}), "inf")
     assert "fell through" in errors(fell, "settle")[0].message
-    on_slab = sim_findings(numbers(settle={"z": 0.05}), BURGER, "inf", ground=0.05)
+    on_slab = sim_findings(numbers(settle={"z": 0.05}), "inf", ground=0.05)
     assert errors(on_slab) == []
 
 
@@ -202,5 +211,5 @@ def test_standing_on_a_floor_slab_is_not_touching():
     rolled = numbers(spin={"touched": [slab], "contact_points": [{"shape": slab, "link": "wheel_left_link",
                                                                   "time": 0.0}]},
                      stop={"touched": [slab]}, settle={"z": 0.05})
-    assert errors(sim_findings(rolled, BURGER, "inf", ground=0.05, floor=slab)) == []
-    assert {f.check for f in errors(sim_findings(rolled, BURGER, "inf"))} == {"spin", "stop-at-wall", "settle"}
+    assert errors(sim_findings(rolled, "inf", ground=0.05, floor=slab)) == []
+    assert {f.check for f in errors(sim_findings(rolled, "inf"))} == {"spin", "stop-at-wall", "settle"}

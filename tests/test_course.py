@@ -126,3 +126,18 @@ def test_forward_speed_is_proportional_and_capped(stop_at_wall):
     assert speed(0.8, 0.5, 0.5, 0.2) == pytest.approx(0.15)
     assert speed(0.5, 0.5, 0.5, 0.2) == 0.0 and speed(0.3, 0.5, 0.5, 0.2) == 0.0
 
+
+
+def test_unwritable_workspace_is_one_line_and_force_replaces_a_file(tmp_path):
+    runner = CliRunner()
+    (tmp_path / "blocked").mkdir()
+    (tmp_path / "blocked" / "src").write_text("a file where the source folder goes\n")
+    blocked = runner.invoke(main, ["course", "--workspace", str(tmp_path / "blocked")])
+    assert blocked.exit_code == 2 and "Traceback" not in blocked.output
+    assert blocked.output.splitlines() == [f"worldgen: error: cannot write {tmp_path / 'blocked' / 'src'}: File "
+                                           "exists (check that the output folder can be created and written to)"]
+    (tmp_path / "ws" / "src").mkdir(parents=True)
+    (tmp_path / "ws" / "src" / "intro_robo").write_text("not a folder\n")
+    forced = runner.invoke(main, ["course", "--workspace", str(tmp_path / "ws"), "--force"])
+    assert forced.exit_code == 0, forced.output
+    assert sorted(p.name for p in (tmp_path / "ws" / "src" / "intro_robo").iterdir()) == PACKAGES

@@ -137,10 +137,31 @@ def test_drive_spin(world):
     (["--robot", "tank"], "unknown robot"),
     (["--spawn", "1,x"], "bad --spawn"),
     (["--kp", "1", "--kp", "2", "--ki", "1", "--ki", "2", "--ki", "3"], "--kp is given 2 times for 3 runs"),
+    (["--kp", "nan"], "nan is not a finite number"),
+    (["--target", "nan"], "nan is not a finite number"),
+    (["--duration", "nan"], "nan is not a finite number"),
+    (["--target", "-0.5"], "not in the range x>0.0"),
+    (["--spawn", "5,5"], "--spawn (5.0, 5.0) is no place for the robot: it is outside the room"),
+    (["--spawn", "1.45,0"], "it is inside a wall"),
+    (["--spawn", "1.3,0,3.14"], "the robot reaches 0.148 m from its centre"),
 ])
 def test_drive_bad_input_exits_2(world, args, words):
     result = CliRunner().invoke(main, ["drive", str(world), *args])
-    assert result.exit_code == 2 and words in result.output
+    assert result.exit_code == 2 and words in result.output and "Traceback" not in result.output
+
+
+def test_drive_turns_a_simulator_crash_into_one_line(world, monkeypatch):
+    import worldgen.sim.process as process
+
+    def crashed(*args, **kwargs):
+        raise SimCrashed("the simulation process running x was killed by signal 11", rc=-11,
+                         stderr_tail="Traceback (most recent call last):\n  pybullet said something")
+
+    monkeypatch.setattr(process, "run_isolated", crashed)
+    result = CliRunner().invoke(main, ["drive", str(world)])
+    assert result.exit_code == 2 and "Traceback" not in result.output
+    (line,) = result.output.splitlines()
+    assert line.startswith(f"worldgen: error: {world}: the simulation failed: ") and "signal 11" in line
 
 
 def test_drive_missing_world_exits_2(tmp_path):

@@ -62,7 +62,8 @@ def test_half_metre_gap_is_found_and_named():
     assert e.enclosed is False
     assert len(e.gaps) == 1
     gap = e.gaps[0]
-    assert math.dist(gap.centre, (0.75, -2.5)) < 0.3
+    assert gap.centre == pytest.approx((0.75, -2.5), abs=1e-3)
+    assert [x for x, _ in gap.ends] == pytest.approx([0.5, 1.0], abs=1e-3)   # the walls' ends, either side
     assert gap.width == pytest.approx(0.5, abs=0.002)
     assert set(gap.between) == {"room/Wall_0_0", "room/Wall_0_1"}
 
@@ -75,7 +76,7 @@ def test_gap_in_a_rotated_offset_room_is_in_world_coordinates():
     c, s = math.cos(yaw), math.sin(yaw)
     expected = (centre[0] + c * lx - s * ly, centre[1] + s * lx + c * ly)
     assert e.enclosed is False and len(e.gaps) == 1
-    assert math.dist(e.gaps[0].centre, expected) < 0.3
+    assert e.gaps[0].centre == pytest.approx(expected, abs=1e-3)
     assert e.gaps[0].width == pytest.approx(0.9, abs=0.01)
 
 
@@ -87,8 +88,8 @@ def test_two_gaps_are_both_listed_widest_first():
     e = enclosure(Scene(None, shapes=shapes), (0.0, 0.0), LIDAR_Z)
     assert e.enclosed is False
     assert [round(g.width, 1) for g in e.gaps] == [1.2, 0.5]
-    assert math.dist(e.gaps[0].centre, (-2.5, 0.0)) < 0.3
-    assert math.dist(e.gaps[1].centre, (0.75, -2.5)) < 0.3
+    assert e.gaps[0].centre == pytest.approx((-2.5, 0.0), abs=1e-3)
+    assert e.gaps[1].centre == pytest.approx((0.75, -2.5), abs=1e-3)
 
 
 def test_way_out_is_the_door_not_the_space_beside_a_partition():
@@ -114,7 +115,7 @@ def test_way_out_of_a_room_through_a_corridor_is_the_corridor_end():
                 wall((6.0, -1.0), (6.0, -0.5), "end_s"), wall((6.0, 0.5), (6.0, 1.0), "end_n")]
     e = enclosure(Scene(None, shapes=room.shapes + corridor), (0.0, 0.0), LIDAR_Z)
     [gap] = e.gaps
-    assert math.dist(gap.centre, (6.0, 0.0)) < 0.3 and gap.width == pytest.approx(1.0, abs=0.01)
+    assert gap.centre == pytest.approx((6.0, 0.0), abs=1e-3) and gap.width == pytest.approx(1.0, abs=0.01)
 
 
 def test_missing_wall_is_one_wide_gap_on_that_side():
@@ -122,7 +123,7 @@ def test_missing_wall_is_one_wide_gap_on_that_side():
     e = enclosure(Scene(None, shapes=shapes), (0.0, -1.0), LIDAR_Z)
     assert e.enclosed is False and len(e.gaps) == 1
     assert e.gaps[0].width == pytest.approx(4.85, abs=0.05)
-    assert abs(e.gaps[0].centre[0]) < 0.05 and abs(e.gaps[0].centre[1] - 2.5) < 0.3
+    assert e.gaps[0].centre == pytest.approx((0.0, 2.5), abs=1e-3)
 
 
 def test_window_above_lidar_keeps_the_room_closed_a_door_does_not():
@@ -135,6 +136,7 @@ def test_window_above_lidar_keeps_the_room_closed_a_door_does_not():
     door = [s for s in shapes if s.link != "Wall_1_2"]   # no sill: an opening from the floor
     e = enclosure(Scene(None, shapes=door), (0.0, 0.0), LIDAR_Z)
     assert e.enclosed is False and e.gaps[0].width == pytest.approx(0.8, abs=0.01)
+    assert e.gaps[0].centre == pytest.approx((2.5, 0.0), abs=1e-3)
 
 
 def test_low_wall_under_the_lidar_plane_does_not_close_the_room():
@@ -150,7 +152,7 @@ def test_sub_millimetre_sliver_counts_as_closed_but_3_mm_does_not():
     crack = enclosure(square_room(door=(0, 2.0, 0.003)), (0.0, 0.0), LIDAR_Z)
     assert crack.enclosed is False
     assert crack.gaps[0].width == pytest.approx(0.003, abs=0.0005)
-    assert math.dist(crack.gaps[0].centre, (-0.4985, -2.5)) < 0.08
+    assert crack.gaps[0].centre == pytest.approx((-0.4985, -2.5), abs=1e-4)
 
 
 def test_spawn_inside_a_wall_or_obstacle_is_reported_as_such():
@@ -159,6 +161,13 @@ def test_spawn_inside_a_wall_or_obstacle_is_reported_as_such():
     pillar = Shape("cylinder", (1.0, 1.0, 0.25), radius=0.15, length=0.5, model="pillar")
     e = enclosure(square_room(extra=[pillar]), (1.05, 0.95), LIDAR_Z)
     assert e.enclosed is None and e.inside == "pillar"
+
+
+@pytest.mark.parametrize("x", [2.4248, 2.5752])   # 0.2 mm inside and outside the right wall (faces at ±0.075)
+def test_spawn_within_the_sliver_of_a_wall_counts_as_in_it(x):
+    e = enclosure(square_room(), (x, 0.0), LIDAR_Z)
+    assert e.enclosed is None and e.inside == "room/Wall_1"
+    assert e.nearest == pytest.approx(0.0002, abs=1e-9)
 
 
 def test_empty_world_and_lone_wall_are_not_enclosed():

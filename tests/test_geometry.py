@@ -265,7 +265,14 @@ def test_shared_wall_of_two_thicknesses_is_refused():
 
 def test_obstacle_names_must_be_unique_across_the_world():
     err = spec_error(Spec("house", obstacles=(Obstacle("sphere", (0, 0), radius=0.2, name="ground_plane", line=8),)))
-    assert err.line == 8
+    assert err.line == 8 and err.message == "obstacle name 'ground_plane' is already used by the ground plane"
+    err = spec_error(Spec("house", obstacles=(Obstacle("sphere", (0, 0), radius=0.2, name="house", line=3),)))
+    assert err.line == 3 and err.message.endswith("is already used by the building")
+    # an unnamed obstacle gets obstacle_N (N from 0); a name written elsewhere may take it
+    err = spec_error(Spec("house", obstacles=(Obstacle("sphere", (0, 0), radius=0.2, name="obstacle_1", line=4),
+                                              Obstacle("sphere", (2, 0), radius=0.2, line=5))))
+    assert err.line == 5 and err.message == ("obstacle 2 has no name, and the one it gets, 'obstacle_1', is already "
+                                             "used by the obstacle on line 4")
 
 
 def test_bounds_cover_obstacles_and_builds_repeat_exactly():

@@ -114,6 +114,22 @@ def test_default_spawn_is_the_middle_of_the_class_room(corpus, tmp_path):
         spawn_for_world(world, spawn=(-2.6, -1.4))
 
 
+@pytest.mark.parametrize("model", ["burger", "waffle", "waffle_pi"])
+def test_a_spawn_the_launch_writer_accepts_leaves_room_to_turn(model):
+    """The spawn check's radius holds the robot's collision shapes (what validate's spawn-clear sweeps): a
+    burger 0.115 m from a wall would put its base box's back corners (0.124 m out) into it when turned."""
+    from worldgen.checks import robot_body
+    from worldgen.scene import Scene, Shape
+    from worldgen.spawn import robot_radius
+
+    reach = robot_body(model).turn_radius
+    assert robot_radius(model) >= reach
+    wall = Scene(source=None, shapes=[Shape("box", (0.5, 0.0, 1.0), size=(0.2, 4.0, 2.0), model="m", name="w")])
+    rooms = world_rooms(wall, robot_radius(model))
+    assert "from a wall" in spawn_problem(rooms, 0.4 - (reach - 0.009), 0.0)
+    assert spawn_problem(rooms, 0.4 - robot_radius(model) - 0.001, 0.0) is None
+
+
 def test_spawn_comes_from_the_spec_beside_the_world(corpus, tmp_path):
     world = tmp_path / "room.world"
     shutil.copy(corpus / ENCLOSED, world)
@@ -176,6 +192,8 @@ def test_launch_command(corpus, tmp_path):
     (["--spawn", "x"], "bad --spawn value"),
     (["--node", "nonode"], "bad --node value"),
     (["--name", "a/b.launch"], "is a path"),
+    (["--name", "my room"], "cannot be passed to roslaunch"),
+    (["--name", ".launch"], "cannot be passed to roslaunch"),
 ])
 def test_launch_command_bad_input(corpus, tmp_path, extra, words):
     world = tmp_path / "room.world"

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import io
 import struct
 
@@ -160,7 +161,21 @@ def test_preview_command_writes_the_png(tmp_path, world_file):
     assert out.read_bytes() == render(picture(spec))
     result = CliRunner().invoke(main, ["preview", str(world_file), "-o", str(out), "--spawn", "0,0,1", "--force"])
     assert result.exit_code == 0, result.output
-    assert out.read_bytes() != render(picture(spec))
+    assert out.read_bytes() == render(dataclasses.replace(picture(world_file), spawn=Spawn(0.0, 0.0, 1.0, "burger")))
+
+
+def test_preview_spawn_and_robot_options(tmp_path):
+    """--spawn moves the spec's robot and keeps its model; --robot changes the model and keeps the pose."""
+    spec = tmp_path / "probe.yaml"
+    spec.write_text(SPEC)
+    out = tmp_path / "probe.png"
+    pic = picture(spec)
+    for options, spawn in ((["--spawn", "0.5,-0.5"], Spawn(0.5, -0.5, 0.0, "waffle")),
+                           (["--robot", "burger"], Spawn(-1.0, 0.0, 1.5708, "burger")),
+                           (["--spawn", "0,0,3", "--robot", "burger"], Spawn(0.0, 0.0, 3.0, "burger"))):
+        result = CliRunner().invoke(main, ["preview", str(spec), "-o", str(out), "--force", *options])
+        assert result.exit_code == 0, result.output
+        assert out.read_bytes() == render(dataclasses.replace(pic, spawn=spawn)), options
 
 
 def test_lidar_rays_end_on_the_walls(tmp_path):

@@ -112,6 +112,18 @@ def test_unknown_relative_to_warns_and_falls_back_to_the_parent():
     assert finding.severity == "warning" and "nowhere" in finding.message and finding.where == "<string>:4"
 
 
+def test_models_and_links_sharing_a_name_each_keep_their_own_pose():
+    # Gazebo loads both copies where each one's <pose> puts it; the reader warns about the names but must not
+    # stack the second copy on the first.
+    text = world(box_model("twin", pose="1 0 0 0 0 0") + box_model("twin", pose="5 0 0 0 0 0")
+                 + "<model name='m'><static>1</static>"
+                 + "".join(f"<link name='L'><pose>0 {y} 0 0 0 0</pose><collision name='c'><geometry><box/></geometry>"
+                           "</collision></link>" for y in (2, 7)) + "</model>")
+    scene = read_world_text(text)
+    assert [s.position for s in scene.shapes] == [(1.0, 0.0, 0.0), (5.0, 0.0, 0.0), (0.0, 2.0, 0.0), (0.0, 7.0, 0.0)]
+    assert sorted(f.check for f in scene.findings) == ["names", "names"]
+
+
 # -- state -------------------------------------------------------------------------------------------------------
 
 STATE_WORLD = world("""
@@ -276,10 +288,12 @@ def test_a_broken_included_model_is_an_error_finding_not_a_crash(tmp_path):
     assert error.check == "include" and "model.sdf:3" in error.message and "not well-formed" in error.message
 
 
-def test_fuel_ground_plane_is_stood_in_for():
-    scene = read_world_text(world("<include><uri>https://fuel.gazebosim.org/1.0/OpenRobotics/models/Ground Plane"
-                                  "</uri></include>", version="1.8"))
-    assert [(s.kind, s.position) for s in scene.shapes] == [("plane", (0.0, 0.0, 0.0))]
+@pytest.mark.parametrize("uri", ["https://fuel.gazebosim.org/1.0/OpenRobotics/models/Ground Plane",
+                                 "https://fuel.gazebosim.org/1.0/OpenRobotics/models/Ground%20Plane/2/",
+                                 "https://fuel.ignitionrobotics.org/1.0/openrobotics/models/ground plane/1"])
+def test_fuel_ground_plane_is_stood_in_for(uri):
+    scene = read_world_text(world(f"<include><uri>{uri}</uri><pose>0 0 -0.5 0 0 0</pose></include>", version="1.8"))
+    assert [(s.kind, s.position) for s in scene.shapes] == [("plane", (0.0, 0.0, -0.5))]
     assert [(f.check, f.severity) for f in scene.findings] == [("include", "info")]
 
 

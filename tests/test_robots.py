@@ -165,6 +165,11 @@ def test_broken_xacro_and_urdf(tmp_path):
     broken.write_text("<robot name='b'><link name='a'></robot>")
     with pytest.raises(InputError, match="cannot read"):
         robot_urdf(broken)
+    itself = tmp_path / "itself.urdf.xacro"
+    itself.write_text("<robot name='b' xmlns:xacro='http://www.ros.org/wiki/xacro'>"
+                      "<xacro:include filename='itself.urdf.xacro'/></robot>")
+    with pytest.raises(InputError, match="xacro recursed without end"):
+        robot_urdf(itself)
 
 
 def test_package_uris_become_absolute_paths(tmp_path, monkeypatch):

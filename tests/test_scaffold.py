@@ -145,12 +145,17 @@ def test_greedy_options_like_catkin(tmp_path):
     (["lab_a", "lab_a"], "cannot depend on itself"),
     (["lab_a", "--rosdistro", "humble"], "ROS 2 distro"),
     (["lab_a", "--meta", "--world", "{spec}"], "metapackage holds no worlds"),
+    (["lab_a", "--world", "{on_wall}"],
+     "the spec's robot pose (2.0, 0.0) is no place for the robot: it is inside a wall"),
 ])
 def test_bad_input_writes_nothing(tmp_path, args, words):
     spec = tmp_path / "room.yaml"
     spec.write_text("name: room\nrooms:\n  - name: a\n    rect: {center: [0, 0], size: [4, 4]}\n")
+    on_wall = tmp_path / "on_wall.yaml"
+    on_wall.write_text(spec.read_text() + "robot: {model: burger, at: [2.0, 0.0], yaw: 0}\n")
     out = tmp_path / "out"
-    result = CliRunner().invoke(main, ["scaffold", *[a.format(spec=spec) for a in args], "-p", str(out)])
+    result = CliRunner().invoke(main, ["scaffold", *[a.format(spec=spec, on_wall=on_wall) for a in args],
+                                       "-p", str(out)])
     assert result.exit_code == 2
     (line,) = [ln for ln in result.output.splitlines() if "rror" in ln]
     assert words in line

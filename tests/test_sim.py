@@ -97,24 +97,50 @@ def test_lidar_ignores_the_robot_and_sees_a_mesh():
         assert min(finite) > 0.99
 
 
+def _run(drive: DiffDrive, updates: int, current=None) -> list[float]:
+    """``updates`` plugin updates at 30 Hz with ideal motors: each wheel turns at the speed last commanded (or
+    ``current`` before the first update); returns the rim speeds commanded last."""
+    rims = list(current or (0.0, 0.0))
+    for _ in range(updates):
+        rims = [w * drive.params.wheel_radius for w in drive.update(1 / 30, tuple(rims))]
+    return rims
+
+
 def test_diff_drive_ramp_is_the_plugins():
     params = DriveParams("l", "r", wheel_separation=0.16, wheel_radius=0.033, acceleration=1.0, torque=10.0,
                          update_rate=30.0, from_plugin=True)
     drive = DiffDrive(params, command=(0.2, 1.0))
     assert drive.targets() == pytest.approx((0.2 - 0.08, 0.2 + 0.08))
-    left, right = drive.update(1 / 30)
-    assert drive.rim == pytest.approx([1 / 30, 1 / 30]) and left == pytest.approx(1 / 30 / 0.033)
-    for _ in range(3):
-        drive.update(1 / 30)
-    assert drive.rim == pytest.approx([0.12, 4 / 30])      # left reached its target, right still ramping
-    for _ in range(5):
-        drive.update(1 / 30)
-    assert drive.rim == pytest.approx([0.12, 0.28])
-    slow = DiffDrive(dataclasses.replace(params, acceleration=0.15), command=(0.2, 0.0), rim=[0.192, 0.0])
-    slow.update(1 / 30)
-    assert slow.rim == pytest.approx([0.2, 0.005])          # within 0.01 m/s of the target: set directly
+    left, right = drive.update(1 / 30, (0.0, 0.0))
+    assert drive.ramped == pytest.approx([1 / 30, 1 / 30]) and left == pytest.approx(1 / 30 / 0.033)
+    drive = DiffDrive(params, command=(0.2, 1.0))
+    assert _run(drive, 4) == pytest.approx([0.12, 4 / 30])      # left reached its target, right still ramping
+    # once either wheel is within 0.01 m/s of its target the plugin sets both targets directly
+    assert _run(drive, 1, (0.12, 4 / 30)) == pytest.approx([0.12, 0.28])
+    slow = DiffDrive(dataclasses.replace(params, acceleration=0.15), command=(0.2, 0.0))
+    assert _run(slow, 1, (0.192, 0.0)) == pytest.approx([0.2, 0.2])
     instant = DiffDrive(dataclasses.replace(params, acceleration=0.0), command=(0.2, 0.0))
-    assert instant.update(1 / 30) == pytest.approx((0.2 / 0.033, 0.2 / 0.033))
+    assert instant.update(1 / 30, (0.0, 0.0)) == pytest.approx((0.2 / 0.033, 0.2 / 0.033))
+
+
+def test_diff_drive_ramps_from_its_own_stale_speed_as_the_plugin_does():
+    """Small command changes are taken at once and leave the ramp's state behind; a large change then ramps
+    from that stale speed: slowing from 0.2 to 0.05 m/s in small steps, then commanding 0, first speeds the
+    wheels up to 0.2 − 1/30 m/s."""
+    params = DriveParams("l", "r", wheel_separation=0.16, wheel_radius=0.033, acceleration=1.0, torque=10.0,
+                         update_rate=30.0, from_plugin=True)
+    drive = DiffDrive(params, command=(0.2, 0.0))
+    rims = _run(drive, 10)
+    assert rims == pytest.approx([0.2, 0.2]) and drive.ramped == pytest.approx([0.2, 0.2])
+    for v in np.arange(0.192, 0.049, -0.008):
+        drive.command = (float(v), 0.0)
+        rims = _run(drive, 1, rims)
+    assert rims == pytest.approx([0.056, 0.056]) and drive.ramped == pytest.approx([0.2, 0.2])
+    drive.command = (0.0, 0.0)
+    lurch = _run(drive, 1, rims)
+    assert lurch == pytest.approx([0.2 - 1 / 30] * 2)
+    assert _run(drive, 4, lurch) == pytest.approx([1 / 30] * 2)
+    assert _run(drive, 1, [1 / 30] * 2) == pytest.approx([0.0, 0.0], abs=1e-12)
 
 
 def test_drives_and_stops_like_the_plugin():
@@ -170,17 +196,40 @@ def test_stop_at_wall_integral_windup_hits_the_wall():
     assert result.overshoot > 0.2
 
 
-def test_contacts_and_clearance_name_the_shape():
+def test_contacts_name_the_shape_and_when_it_was_first_touched():
     post = Shape("cylinder", (1.0, 0.0, 0.25), radius=0.1, length=0.5, model="posts", link="l", name="post")
     decoy = Shape("box", (1.0, 1.0, 0.25), size=(0.2, 0.2, 0.5), model="posts", link="l", name="decoy")
     with Session(Scene(source=None, shapes=[post, decoy])) as session:
-        clearance = session.min_clearance(2.0)
-        # burger's front (base box and LiDAR housing) is 0.038 m ahead of base_footprint
-        assert clearance.shape == "posts/l/post" and clearance.distance == pytest.approx(0.9 - 0.038, abs=0.005)
-        assert session.min_clearance(0.5) is None and session.contacts() == []
+        assert session.contacts() == []
         session.cmd_vel(0.2)
         session.run(6.0)
         touching = session.contacts()
         assert touching and {c.shape for c in touching} == {"posts/l/post"}
         assert touching[0].link in ("base_link", "base_scan")
-        assert session.touches.to_list()[0]["shape"] == "posts/l/post"
+        # burger's front (base box and LiDAR housing) is 0.038 m ahead of base_footprint: 0.862 m to the post,
+        # 0.02 m of it in the 0.2 s ramp, the rest at 0.2 m/s
+        first = session.touches.to_list()[0]
+        assert first["shape"] == "posts/l/post" and first["time"] == pytest.approx(0.2 + 0.842 / 0.2, abs=0.05)
+
+
+def test_a_turn_slowed_in_small_steps_leaves_a_stale_ramp_that_exercises_start_without():
+    """As in Gazebo, a forward command after a turn whose slowdown the plugin took at once veers (the ramp starts
+    from the turn's stale wheel speeds); each exercise starts with the ramp synced to the standing wheels."""
+    headings = []
+    for fresh in (False, True):
+        with Session(None, noise=False) as session:
+            settle(session, 0.3)
+            for omega in (1.0, 1.0, 0.9, 0.8, 0.7, 0.6, 0.5, 0.4, 0.3, 0.2, 0.1, 0.0):
+                session.cmd_vel(0.0, omega)   # rim steps of 0.008 m/s: each set directly
+                session.run(0.1)
+            session.run(0.5)
+            assert session.drive.ramped == pytest.approx([-0.08, 0.08], abs=0.002)
+            if fresh:
+                session.start_exercise()
+                assert session.drive.ramped == pytest.approx([0.0, 0.0], abs=1e-3)
+            yaw = session.odometry().yaw
+            session.cmd_vel(0.2)
+            session.run(1.0)
+            headings.append(math.degrees(math.remainder(session.odometry().yaw - yaw, math.tau)))
+    stale, fresh = headings
+    assert stale > 5.0 and abs(fresh) < 0.5

@@ -9,6 +9,7 @@ import yaml
 from click.testing import CliRunner
 
 from worldgen.cli import main
+from worldgen.errors import SpecError
 from worldgen.spec import (DEFAULT_HEIGHT, DEFAULT_MATERIAL, DEFAULT_THICKNESS, Material, load_spec, parse_spec,
                            starter_spec)
 
@@ -160,9 +161,25 @@ def test_json_errors_have_lines_too(tmp_path):
     path = tmp_path / "bad.json"
     path.write_text('{\n  "name": "j",\n  "rooms": [\n    {"name": "a", "rect": {"center": [0, 0], "sise": [1, 1]}}\n'
                     '  ]\n}\n')
-    with pytest.raises(Exception) as err:
+    with pytest.raises(SpecError) as err:
         load_spec(path)
     assert str(err.value).startswith(f"{path}:4: unknown key 'sise' in rect of room 'a'; did you mean 'size'?")
+
+
+def test_json_numbers_with_exponents_are_numbers(tmp_path):
+    """json.dumps writes 0.00001 as 1e-05, which YAML 1.1 alone would read as text."""
+    data = {"name": "e", "rooms": [{"name": "a", "rect": {"center": [0.00001, -2.5e-7], "size": [5e0, 4.0]}}],
+            "robot": {"at": [1e-05, 0], "yaw": 1e-07}}
+    path = tmp_path / "e.json"
+    path.write_text(json.dumps(data, separators=(",", ":")))
+    assert "1e-05" in path.read_text()
+    spec = load_spec(path)
+    assert spec.rooms[0].vertices[0] == (round(0.00001 - 2.5, 9), round(-2.5e-7 - 2, 9))
+    assert (spec.robot.at, spec.robot.yaw) == ((1e-05, 0.0), 1e-07)
+    assert parse_spec("name: y\nobstacles: [{shape: sphere, radius: 2E-1, at: [1e0, -1.5e+0]}]\n").obstacles[0].at \
+        == (1.0, -1.5)
+    with pytest.raises(SpecError, match="must be a number, not the text '2e-1'"):   # quoted: text, as written
+        parse_spec("name: y\nobstacles: [{shape: sphere, radius: '2e-1', at: [0, 0]}]\n")
 
 
 def test_yaml_anchors_and_merge_keys_work():

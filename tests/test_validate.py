@@ -117,7 +117,7 @@ def test_room_with_half_metre_gap_fails_and_names_it(tmp_path):
     r = doc["results"][0]
     assert r["metrics"]["enclosed"] is False
     [gap] = r["metrics"]["gaps"]
-    assert math.dist(gap["centre"], (0.75, -2.5)) < 0.3 and gap["width"] == pytest.approx(0.5, abs=0.02)
+    assert gap["centre"] == pytest.approx([0.75, -2.5], abs=1e-3) and gap["width"] == pytest.approx(0.5, abs=0.02)
     [finding] = [f for f in r["findings"] if f["check"] == "enclosed"]
     assert finding["severity"] == "error" and "0.50 m gap at (0.75, -2.5" in finding["message"]
 
@@ -168,6 +168,31 @@ def test_junit_has_a_testcase_per_file_and_check(tmp_path):
     assert not list(report.parent.glob(".*.tmp"))   # written atomically: no temporary left behind
 
 
+def test_reports_hold_file_names_that_are_not_text(tmp_path):
+    # a control character, and byte 0xff (not UTF-8), which Python keeps as the lone surrogate \udcff
+    bad = write_world(tmp_path / "a\x01b\udcff.world", room_walls(4.0, gap=(0.0, 0.6)))
+    code, doc = as_json(bad, "--skip-sim")
+    assert code == 1 and doc["results"][0]["path"] == str(tmp_path / "a\x01b\ufffd.world")
+    assert "a\x01b\ufffd.world" in run_cli(bad, "--skip-sim").output
+    report = tmp_path / "validate.xml"
+    assert run_cli(bad, "--skip-sim", "--junit", report).exit_code == 1
+    cases = etree.parse(str(report)).getroot().findall("testsuite/testcase")
+    assert {c.get("classname") for c in cases} == {str(tmp_path / "a\ufffdb\ufffd.world")}
+    [failing] = [c for c in cases if c.find("failure") is not None]
+    assert failing.get("name") == "enclosed" and "0.60 m gap" in failing.find("failure").get("message")
+
+
+def test_a_launch_error_does_not_stop_a_spec_being_checked(tmp_path):
+    launch = tmp_path / "bad_x.launch"
+    launch.write_text('<launch><node pkg="gazebo_ros" type="spawn_model" name="spawn_urdf" '
+                      'args="-urdf -model turtlebot3_burger -x abc -y 0 -param robot_description"/></launch>')
+    code, doc = as_json(EXAMPLES / "enclosed_room.yaml", "--launch", launch, "--skip-sim")
+    [r] = doc["results"]
+    assert code == 1 and [f["check"] for f in r["findings"] if f["severity"] == "error"] == ["launch-spawn"]
+    assert r["checks"] == ["launch", "parse", "enclosed", "spawn-clear"]
+    assert r["metrics"]["enclosed"] is True and r["metrics"]["enclosed_area_m2"] > 10
+
+
 def test_text_report_is_a_table_with_findings_errors_first(tmp_path):
     bad = write_world(tmp_path / "bad.world", room_walls(4.0, gap=(0.0, 0.6)))
     out = run_cli(bad, "--skip-sim")
@@ -208,10 +233,24 @@ def test_stop_at_wall_turns_to_face_the_nearest_wall(tmp_path):
 
 # ------------------------------------------------------------------------------------------------ exit codes
 
+BAD_NUMBER_URDF = """<robot name="r">
+  <link name="base_footprint"/>
+  <link name="base_link"><collision><origin xyz="0 0 {z}"/><geometry><box size="0.2 0.2 0.2"/></geometry></collision>
+  </link>
+  <joint name="j" type="fixed"><parent link="base_footprint"/><child link="base_link"/><origin xyz="0 0 {jz}"/>
+  </joint>
+</robot>
+"""
+
+
 def test_exit_code_2_for_bad_input_with_one_line(tmp_path):
     world = write_world(tmp_path / "room.world", room_walls(4.0))
+    (tmp_path / "collision.urdf").write_text(BAD_NUMBER_URDF.format(z="oops", jz="0.1"))
+    (tmp_path / "joint.urdf").write_text(BAD_NUMBER_URDF.format(z="0", jz="zz"))
     for args in ([tmp_path / "missing.world"], [world, "--spawn", "1,x"], [world, "--robot", "roomba"],
-                 [world, "--model-path", tmp_path / "nope"], [world, "--launch", tmp_path / "no.launch"]):
+                 [world, "--model-path", tmp_path / "nope"], [world, "--launch", tmp_path / "no.launch"],
+                 [world, "--robot", tmp_path / "collision.urdf"], [world, "--robot", tmp_path / "joint.urdf"],
+                 [world, "--skip-sim", "--junit", world / "report.xml"]):   # a folder that is a file
         proc = subprocess.run([sys.executable, "-m", "worldgen", "validate", *map(str, args)],
                               capture_output=True, text=True)
         assert proc.returncode == 2, args
@@ -289,8 +328,8 @@ def test_package_folder_validates_each_launch_file(tmp_path):
     package_row, launch_row = doc["results"]
     assert package_row["checks"] == ["package"]
     assert launch_row["spawn"] == [0.8, -0.6, 0.0] and launch_row["metrics"]["enclosed"] is True
-    assert code == (0 if doc["ok"] else 1)
     assert all(f["severity"] != "error" for r in doc["results"] for f in r["findings"]), json.dumps(doc, indent=1)
+    assert code == 0 and doc["ok"] is True
     # the package check's own findings land on the package's row, under the package test case
     (pkg / "CMakeLists.txt").unlink()
     report = tmp_path / "junit.xml"

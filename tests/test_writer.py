@@ -210,6 +210,12 @@ def test_camera_looks_straight_down_on_the_whole_building():
 
 
 def test_versions_and_model_folder():
+    from worldgen.cli.build import SDF_VERSION_CHOICES, build_command
+    from worldgen.sdf.writer import DEFAULT_SDF_VERSION
+
+    # the command lists the versions itself (so that the CLI starts without lxml); they must be the writer's
+    assert SDF_VERSION_CHOICES == SDF_VERSIONS
+    assert [p.default for p in build_command.params if p.name == "sdf_version"] == [DEFAULT_SDF_VERSION]
     building = build_geometry(Spec("lab", rooms=(rect_room("r", 0, 0, 4, 3),)))
     for version in SDF_VERSIONS:
         assert etree.fromstring(world_sdf(building, version).encode()).get("version") == version
@@ -223,7 +229,7 @@ def test_versions_and_model_folder():
             config.findtext("description")) == ("lab", "model.sdf", "1.7", "a lab")
     files = planned_files(building, "out", model_dir=True)
     assert [str(p) for p in files] == ["out/lab.world", "out/lab/model.config", "out/lab/model.sdf"]
-    assert read_boxes(files[next(iter(files))]) and len(read_boxes(model_sdf(building))) == 4
+    assert len(read_boxes(files[next(iter(files))])) == len(read_boxes(model_sdf(building))) == 4
 
 
 def test_editor_room_matches_the_class_world(corpus):

@@ -3,8 +3,8 @@ findings a student can act on, plus metrics a program can read.
 
 Geometric checks run here, in the calling process: ``parse`` (the reader's own findings), ``enclosed`` (see
 :mod:`worldgen.enclosure`) and ``spawn-clear``. The simulated checks — ``settle``, ``lidar``, ``spin`` and
-``stop-at-wall`` — run together in one child process per world (:func:`simulate`, through
-:func:`worldgen.sim.process.run_isolated`), which returns plain numbers; :func:`sim_findings` judges them.
+``stop-at-wall`` — run together in one child process per world (:mod:`worldgen.sim.validate_job`), which returns
+plain numbers; :func:`sim_findings` judges them.
 """
 
 from __future__ import annotations
@@ -43,31 +43,33 @@ class RobotBody:
     name: str
     footprint: tuple[tuple[float, float], ...]
     width: float
-    length: float
     height: float
     turn_radius: float
     lidar_height: float | None
-    lidar_range: float = 3.5
-    lidar_beams: int = 360
 
 
 @lru_cache(maxsize=8)
 def robot_body(robot: str = "burger") -> RobotBody:
     """The :class:`RobotBody` of a model name or URDF/xacro file (raises InputError for a bad one)."""
+    from .errors import InputError
     from .robots import robot_urdf
     from .robots.profile import robot_profile
 
     urdf = robot_urdf(robot)
-    profile = robot_profile(urdf, source=str(robot))
     name = str(robot) if str(robot) in ("burger", "waffle", "waffle_pi") else Path(str(robot)).name
-    return _body_from_urdf(urdf, profile, name=name)
+    try:
+        return _body_from_urdf(urdf, robot_profile(urdf, source=str(robot)), name=name)
+    except ValueError as err:   # a size, origin or joint value that is not a number
+        raise InputError(f"the robot description holds a value that is not a number ({err})", path=str(robot),
+                         hint="fix the numbers in the URDF or xacro file (sizes, origins, joints)") from None
 
 
 def _body_from_urdf(urdf: str, profile, name: str) -> RobotBody:
     import numpy as np
     import shapely
 
-    from .robots.profile import _rpy, link_frames
+    from .robots.profile import link_frames
+    from .sdf.poses import rpy_matrix
 
     frames = link_frames(profile.joints, profile.root_link)
     points = []
@@ -83,7 +85,7 @@ def _body_from_urdf(urdf: str, profile, name: str) -> RobotBody:
             origin = collision.find("origin")
             xyz = _floats(origin.get("xyz") if origin is not None else None)
             rpy = _floats(origin.get("rpy") if origin is not None else None)
-            in_link = local @ np.array(_rpy(rpy)).T + np.array(xyz)
+            in_link = local @ rpy_matrix(*rpy).T + np.array(xyz)
             points.append(in_link @ link_rot.T + link_pos)
     if not points:   # no collision geometry at all: a TurtleBot3 burger's box stands in
         points = [np.array([[x, y, z] for x in (-0.102, 0.038) for y in (-0.089, 0.089) for z in (0.0, 0.19)])]
@@ -94,12 +96,9 @@ def _body_from_urdf(urdf: str, profile, name: str) -> RobotBody:
     if profile.lidar is not None and profile.lidar.link in frames:
         lidar_height = frames[profile.lidar.link][0][2] + profile.lidar.pose[2]
     return RobotBody(
-        name=name, footprint=ring,
-        width=float(cloud[:, 1].max() - cloud[:, 1].min()), length=float(cloud[:, 0].max() - cloud[:, 0].min()),
+        name=name, footprint=ring, width=float(cloud[:, 1].max() - cloud[:, 1].min()),
         height=float(cloud[:, 2].max()), turn_radius=float(np.hypot(cloud[:, 0], cloud[:, 1]).max()),
-        lidar_height=lidar_height,
-        lidar_range=profile.lidar.range_max if profile.lidar else 3.5,
-        lidar_beams=profile.lidar.samples if profile.lidar else 360)
+        lidar_height=lidar_height)
 
 
 def _floats(text: str | None) -> tuple[float, float, float]:
@@ -111,20 +110,20 @@ def _geometry_points(geometry):
     """Points whose hull bounds a URDF collision geometry, in its own frame (None for meshes and unknowns)."""
     import numpy as np
 
+    from .enclosure import box_corners
+
     if geometry is None or not len(geometry):
         return None
     shape = geometry[0]
     if shape.tag == "box":
-        hx, hy, hz = (v / 2 for v in _floats(shape.get("size")))
-        return np.array([[sx * hx, sy * hy, sz * hz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)])
+        return box_corners(_floats(shape.get("size")))
     if shape.tag == "cylinder":
         r, half = float(shape.get("radius", 0)), float(shape.get("length", 0)) / 2
         a = np.linspace(0, 2 * math.pi, 16, endpoint=False)
         ring = np.column_stack([r * np.cos(a), r * np.sin(a)])
         return np.vstack([np.column_stack([ring, np.full(16, z)]) for z in (-half, half)])
     if shape.tag == "sphere":
-        r = float(shape.get("radius", 0))
-        return np.array([[sx * r, sy * r, sz * r] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)])
+        return box_corners([2 * float(shape.get("radius", 0))] * 3)
     return None
 
 
@@ -148,7 +147,12 @@ class Outcome:
 
 
 def _xy(p) -> str:
-    return f"({p[0]:.2f}, {p[1]:.2f})"
+    return f"({_coordinate(p[0])}, {_coordinate(p[1])})"
+
+
+def _coordinate(value: float) -> str:
+    """Centimetres for a coordinate as people write them; 3 significant digits for absurdly large ones."""
+    return f"{value:.2f}" if abs(value) < 1e6 else f"{value:.3g}"
 
 
 # ------------------------------------------------------------------------------------------- parse
@@ -180,7 +184,7 @@ def check_enclosed(scene: Scene, spawn: tuple[float, float, float], body: RobotB
                    ) -> Outcome:
     """The spawn lies in a region the walls close at LiDAR height (above the floor at ``ground``);
     otherwise, where each way out is."""
-    from .enclosure import enclosure
+    from .enclosure import MAX_GAP, enclosure
 
     height = ground + (body.lidar_height if body.lidar_height is not None else min(body.height, 0.182))
     found = enclosure(scene, spawn[:2], height)
@@ -214,7 +218,7 @@ def check_enclosed(scene: Scene, spawn: tuple[float, float, float], body: RobotB
             fix = "move the spawn into that room (launch x_pos/y_pos, spec robot.at or --spawn)"
         else:
             message = (f"the walls do not surround the spawn: the nearest is {found.nearest:.2f} m away and no "
-                       "opening narrower than 8 m would close the region round it")
+                       f"opening narrower than {MAX_GAP:g} m would close the region round it")
             fix = "put the spawn inside a room, or close the room round it"
         return Outcome([Finding("enclosed", "error", message, where=where, fix=fix)], metrics)
     # The plane is open. Can the robot itself pass each gap? Its body spans the floor to its top, so a window
@@ -299,10 +303,10 @@ def check_spawn_clear(scene: Scene, spawn: tuple[float, float, float], body: Rob
 
 # ------------------------------------------------------------------------------------------ simulated checks
 
-def sim_findings(numbers: dict, body: RobotBody, no_hit: str, ground: float = 0.0, floor: str | None = None
-                 ) -> Outcome:
-    """Judge the numbers :func:`simulate` measured (missing parts are skipped). ``ground`` is the floor's height
-    at the spawn and ``floor`` the floor slab's label, if any: standing on it is no touching."""
+def sim_findings(numbers: dict, no_hit: str, ground: float = 0.0, floor: str | None = None) -> Outcome:
+    """Judge the numbers :func:`worldgen.sim.validate_job.sim_numbers` measured (missing parts are skipped).
+    ``no_hit`` is what a beam that hits nothing reads ("inf" or "zero"); ``ground`` is the floor's height at the
+    spawn and ``floor`` the floor slab's label, if any: standing on it is no touching."""
     findings: list[Finding] = []
     metrics: dict = {}
     numbers = dict(numbers)
@@ -380,9 +384,10 @@ def sim_findings(numbers: dict, body: RobotBody, no_hit: str, ground: float = 0.
                                     fix="an obstacle below the LiDAR plane is in the way, or the wall is too "
                                         "close to brake; clear the path or move the spawn"))
         elif stop.get("distance") is None or abs(stop["distance"] - STOP_TARGET) > STOP_TOLERANCE:
-            got = "no reading" if stop.get("distance") is None else f"{stop['distance']:.2f} m"
+            ended = ("with no wall in range ahead" if stop.get("distance") is None else
+                     f"{stop['distance']:.2f} m from the wall")
             findings.append(Finding("stop-at-wall", "warning",
-                                    f"stop at wall ended at {got} from the wall instead of {STOP_TARGET} m "
+                                    f"stop at wall ended {ended} instead of {STOP_TARGET} m from it "
                                     f"after {stop.get('time', 0):.1f} s",
                                     fix="check the floor ahead of the spawn is flat and free"))
     for name, message in numbers.get("failed", {}).items():
@@ -393,134 +398,3 @@ def sim_findings(numbers: dict, body: RobotBody, no_hit: str, ground: float = 0.
 def _contacts_text(part: dict) -> str | None:
     points = part.get("contact_points") or []
     return "; ".join(f"{c['link']} touched {c['shape']} at t = {c['time']:.1f} s" for c in points) or None
-
-
-# ------------------------------------------------------------------------------------- the simulator's job
-
-SETTLE_SECONDS = 1.0
-SPIN_OMEGA = 1.5            # rad/s: within both the burger's (2.84) and the waffle's (1.82) limits
-STOP_KP = 1.0
-FACE_TOLERANCE = math.radians(2)
-
-
-def simulate(world: str | None = None, world_text: str | None = None, source: str | None = None,
-             model_paths: list[str] = (), robot: str = "burger", spawn: list[float] = (0.0, 0.0, 0.0),
-             no_hit: str = "inf", stage_file: str | None = None) -> dict:
-    """Run the simulated checks on one world in this process and return plain numbers (JSON-safe).
-
-    Meant to run in a child process (``run_isolated("worldgen.checks:simulate", …)``): it reads the world
-    itself (from ``world``, or from ``world_text`` for a spec built in memory), spawns the robot, lets it
-    settle, takes a 360-beam scan, spins in place, then drives to 0.5 m from the nearest wall ahead (turning
-    to face the nearest wall first when nothing is within range ahead). Each stage is written to
-    ``stage_file`` before it starts, so that a crash can be reported as "while <stage>".
-    """
-    import time
-
-    from .sdf.reader import read_world, read_world_text
-    from .sim.behaviours import settle, spin, stop_at_wall
-    from .sim.session import Session
-
-    def stage(text: str) -> None:
-        if stage_file:
-            with open(stage_file, "w", encoding="utf-8") as fh:
-                fh.write(text)
-
-    started = time.perf_counter()
-    stage("reading the world")
-    if world_text is not None:
-        scene = read_world_text(world_text, source=source, model_paths=tuple(model_paths))
-    else:
-        scene = read_world(world, model_paths=tuple(model_paths))
-    stage("loading the world and the robot")
-    numbers: dict = {"ran": [], "failed": {}}
-    with Session(scene, robot, tuple(spawn), no_hit=no_hit) as session:
-        stage("letting the robot settle")
-        rest = settle(session, SETTLE_SECONDS)
-        numbers["ran"].append("settle")
-        numbers["settle"] = {"time": SETTLE_SECONDS, "z": rest.z, "moved": rest.drift,
-                             "tilt_deg": math.degrees(max(abs(rest.roll), abs(rest.pitch))),
-                             "contact_points": _touched_points(rest.contacts)}
-        if session.lidar is None:
-            numbers["failed"]["lidar"] = "the robot has no LiDAR (no ray sensor and no base_scan link)"
-            numbers["ran"].append("lidar")
-        else:
-            stage("scanning with the LiDAR")
-            numbers["lidar"] = _scan_numbers(session.scan())
-            numbers["ran"].append("lidar")
-        stage("spinning in place")
-        turn = spin(session, seconds=2 * math.pi / SPIN_OMEGA, omega=SPIN_OMEGA)
-        numbers["ran"].append("spin")
-        numbers["spin"] = {"drift": turn.max_drift, "turned": turn.turned, "touched": _touched(turn.contacts),
-                           "contact_points": _touched_points(turn.contacts)}
-        if session.lidar is not None:
-            stage("driving to the wall")
-            numbers["stop"] = _stop_at_wall(session, stop_at_wall)
-            numbers["ran"].append("stop-at-wall")
-        numbers["sim_seconds"] = session.t
-    numbers["wall_seconds"] = time.perf_counter() - started
-    stage("done")
-    return numbers
-
-
-def _scan_numbers(scan) -> dict:
-    true = scan.true_ranges
-    hits = [(r, i) for i, r in enumerate(true) if math.isfinite(r)]
-    misses = [i for i, r in enumerate(true) if not math.isfinite(r)]
-    nearest = min(hits) if hits else None
-    return {"beams": len(true), "no_hit": len(misses), "range_max": scan.range_max,
-            "no_hit_reading": scan.ranges[misses[0]] if misses else None,
-            "no_hit_bearings_deg": [math.degrees(scan.angle_min + i * scan.angle_increment) for i in misses[:1]],
-            "nearest": nearest[0] if nearest else None,
-            "nearest_bearing_deg": math.degrees(scan.angle_min + nearest[1] * scan.angle_increment)
-            if nearest else None,
-            "farthest": max(hits)[0] if hits else None,
-            "ranges_sample": [scan.ranges[i] for i in range(0, len(scan.ranges), 90)]}
-
-
-def _touched(contacts: list[dict]) -> list[str]:
-    return sorted({c["shape"] for c in contacts})
-
-
-def _touched_points(contacts: list[dict]) -> list:
-    return [{"shape": c["shape"], "link": c["link"], "time": c["time"]} for c in contacts[:3]]
-
-
-def _stop_at_wall(session, stop_at_wall) -> dict:
-    """Face the nearest wall when nothing is in range straight ahead, then run the P controller to 0.5 m."""
-    from .sim.lidar import front_distance
-
-    scan = session.scan(noise=False)
-    ahead = front_distance(scan, true=True)
-    turned = False
-    if ahead is None:
-        hits = [(r, i) for i, r in enumerate(scan.true_ranges) if math.isfinite(r)]
-        if not hits:
-            return {"no_wall": True, "range": scan.range_max, "distance": None, "touched": []}
-        distance, i = min(hits)
-        _face(session, scan.angle_min + i * scan.angle_increment)
-        turned = True
-        ahead = front_distance(session.scan(noise=False), true=True)
-        if ahead is None:
-            return {"no_wall": True, "range": scan.range_max, "distance": None, "touched": []}
-    speed = 0.22
-    # long enough to cross the whole LiDAR range: what is ahead may change as the robot passes obstacles
-    duration = (scan.range_max - STOP_TARGET) / speed + 10.0
-    start_t = session.t
-    run = stop_at_wall(session, target=STOP_TARGET, kp=STOP_KP, duration=duration, max_speed=speed)
-    return {"distance": run.final_distance, "touched": _touched(run.contacts),
-            "contact_points": _touched_points(run.contacts), "time": session.t - start_t,
-            "start_distance": ahead, "turned_to_face": turned, "overshoot": run.overshoot,
-            "heading_deg": math.degrees(session.odometry().yaw)}
-
-
-def _face(session, bearing: float) -> None:
-    """Turn in place until the robot faces ``bearing`` (rad, relative to its heading now)."""
-    target = session.odometry().yaw + bearing
-    for _ in range(200):   # at most 20 s
-        error = math.remainder(target - session.odometry().yaw, math.tau)
-        if abs(error) < FACE_TOLERANCE:
-            break
-        session.cmd_vel(0.0, max(-SPIN_OMEGA, min(SPIN_OMEGA, 2.0 * error)))
-        session.run(0.1)
-    session.cmd_vel(0.0, 0.0)
-    session.run(0.3)

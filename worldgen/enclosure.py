@@ -61,11 +61,11 @@ class Gap:
 class Enclosure:
     """What the slice says about the spawn point.
 
-    ``enclosed`` is None when the spawn is inside a shape (``inside`` names it). ``has_walls`` is False when
-    nothing at all is cut by the slicing plane. ``region_area``/``region_bounds`` describe the free region around
-    the spawn when it is enclosed. ``nearest`` is the distance from the spawn to the nearest footprint.
-    ``rooms`` are the bounds (xmin, ymin, xmax, ymax) of closed regions elsewhere, nearest first, when the
-    spawn is not enclosed (where it probably should have been).
+    ``enclosed`` is None when the spawn is inside a shape or within :data:`SLIVER` of one (``inside`` names the
+    nearest). ``has_walls`` is False when nothing at all is cut by the slicing plane. ``region_area``/
+    ``region_bounds`` describe the free region around the spawn when it is enclosed. ``nearest`` is the distance
+    from the spawn to the nearest footprint. ``rooms`` are the bounds (xmin, ymin, xmax, ymax) of closed regions
+    elsewhere, nearest first, when the spawn is not enclosed (where it probably should have been).
     """
 
     spawn: tuple[float, float]
@@ -115,7 +115,8 @@ def _convex_section(points, z: float):
     return hull if hull.geom_type == "Polygon" and hull.area > 0 else None
 
 
-def _box_corners(size) -> "np.ndarray":
+def box_corners(size) -> "np.ndarray":
+    """The 8 corners (8 × 3) of a box of full ``size`` (x, y, z) centred on its own frame."""
     import numpy as np
 
     hx, hy, hz = (s / 2 for s in size)
@@ -202,7 +203,6 @@ def _inside_by_parity(point, segments) -> bool:
 def _mesh_section(shape: Shape, z: float):
     """A mesh's section: the solid faces of the section (even-odd rule) plus every cut segment as a thin strip,
     so that a mesh that is not closed still blocks where it has surface."""
-    import numpy as np
     import shapely
 
     if shape.vertices is None or shape.faces is None:
@@ -242,7 +242,7 @@ def _probe(polygon) -> tuple[float, float]:
 def section(shape: Shape, z: float):
     """The 2-D footprint (shapely geometry, world x/y) of ``shape`` cut by the plane at height ``z``, or None."""
     if shape.kind == "box" and shape.size is not None:
-        return _convex_section(_to_world(shape, _box_corners(shape.size)), z)
+        return _convex_section(_to_world(shape, box_corners(shape.size)), z)
     if shape.kind == "cylinder" and shape.radius and shape.length:
         return _cylinder_section(shape, z)
     if shape.kind == "sphere" and shape.radius:
@@ -285,7 +285,7 @@ def shape_top(shape: Shape) -> float | None:
     from .sdf.poses import quat_matrix
 
     if shape.kind == "box" and shape.size is not None:
-        return float(_to_world(shape, _box_corners(shape.size))[:, 2].max())
+        return float(_to_world(shape, box_corners(shape.size))[:, 2].max())
     if shape.kind == "cylinder" and shape.radius and shape.length:
         axis = quat_matrix(*shape.orientation)[:, 2]
         tilt = math.sqrt(max(0.0, 1 - axis[2] ** 2))
@@ -550,11 +550,11 @@ def analyse(prints: list[Footprint], spawn: tuple[float, float], height: float) 
     point = shapely.Point(spawn)
     if not prints:
         return Enclosure(spawn, height, enclosed=False, has_walls=False)
-    for p in prints:
-        if p.geometry.covers(point):
-            return Enclosure(spawn, height, enclosed=None, inside=p.label, nearest=0.0)
-    nearest = min(p.geometry.distance(point) for p in prints)
+    distances = [(p.geometry.distance(point), i) for i, p in enumerate(prints)]
+    nearest, closest = min(distances)
     obstacles = obstacle_union(prints)
+    if obstacles.covers(point):   # in a shape, or within SLIVER of one (a gap that thin counts as closed)
+        return Enclosure(spawn, height, enclosed=None, inside=prints[closest].label, nearest=nearest)
     frame = _frame(obstacles, spawn, MARGIN + MAX_GAP)
     space = _Space(obstacles, frame)
     if space.cut_off(spawn, 0.0):

@@ -25,9 +25,3 @@ class Finding:
 
     def to_dict(self) -> dict:
         return {k: v for k, v in asdict(self).items() if v is not None}
-
-
-def worst(findings) -> Severity | None:
-    """The most severe severity among ``findings`` (None when there are none)."""
-    present = {f.severity for f in findings}
-    return next((s for s in SEVERITIES if s in present), None)

@@ -30,6 +30,7 @@ from dataclasses import dataclass, field
 
 from .errors import SpecError
 from .spec import Material, Obstacle, Opening, Point, RobotPose, Spec, WallStyle
+from .spec import _m   # lengths in messages, written as the spec's own messages write them
 
 EPS = 1e-3              # two points closer than this are one point; a point this close to a line lies on it
 ANG_EPS = 1e-4          # edges whose directions differ less than this (radians) are parallel
@@ -250,10 +251,6 @@ def _fail(spec: Spec, message: str, line: int | None, hint: str | None = None):
     raise SpecError(message, path=spec.source, line=line, hint=hint)
 
 
-def _m(x: float) -> str:
-    return f"{x:.3f}".rstrip("0").rstrip(".")
-
-
 # ------------------------------------------------------------------------------------------------- public
 def build_geometry(spec: Spec) -> Building:
     """The walls (boxes), obstacles and robot pose of ``spec``; raises SpecError for what only geometry can tell
@@ -288,12 +285,13 @@ def obstacle_names(obstacles, building_name: str, *, spec: Spec | None = None) -
     SpecError when two models of the world would share a name."""
     names = [o.name or f"obstacle_{i}" for i, o in enumerate(obstacles)]
     taken = {building_name: "the building", "ground_plane": "the ground plane"}
-    for o, name in zip(obstacles, names):
+    for i, (o, name) in enumerate(zip(obstacles, names)):
         if name in taken:
-            raise SpecError(f"obstacle name '{name}' is already used by {taken[name]}",
-                            path=spec.source if spec else None, line=o.line,
-                            hint="give every obstacle its own name")
-        taken[name] = "another obstacle"
+            what = (f"obstacle name '{name}'" if o.name else
+                    f"obstacle {i + 1} has no name, and the one it gets, '{name}',")
+            raise SpecError(f"{what} is already used by {taken[name]}", path=spec.source if spec else None,
+                            line=o.line, hint="give every obstacle its own name")
+        taken[name] = f"the obstacle on line {o.line}" if o.line else "another obstacle"
     return names
 
 
@@ -324,14 +322,15 @@ def _edges(spec: Spec) -> list[_Edge]:
                                ((r, i), (r, (i + 1) % len(vs)))))
         for o in room.openings:
             if not 0 <= o.wall < len(vs):
-                _fail(spec, f"room '{room.name}' has no wall {o.wall} (its walls are 0 to {len(vs) - 1})", o.line)
+                _fail(spec, f"room '{room.name}' has no wall {o.wall} (its walls are 0 to {len(vs) - 1})", o.line,
+                      "wall i runs from corner i to the next")
     for j, seg in enumerate(spec.segments):
-        label = f"segment {j}"
+        label = f"segment {j + 1}"   # counted from 1, as the spec's messages count them
         if math.dist(seg.start, seg.end) <= EPS:
             _fail(spec, f"{label} has no length", seg.line, "give it two different end points")
         for o in seg.openings:
             if o.wall != 0:
-                _fail(spec, f"{label} has only wall 0", o.line)
+                _fail(spec, f"{label} has only wall 0", o.line, "a segment is a single wall: wall 0")
         edges.append(_Edge(seg.start, seg.end, seg.style, len(edges), label, None, seg.line, seg.openings))
     return edges
 

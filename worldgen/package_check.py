@@ -79,7 +79,7 @@ def check_package(pkg_dir: str | Path, *, ros_package_path: Sequence[str | Path]
 
 def _read_manifest(manifest: Path, add) -> tuple[str, set[str] | None]:
     try:
-        from catkin_pkg.package import InvalidPackage, parse_package
+        from catkin_pkg.package import parse_package
     except ImportError:   # catkin_pkg is a test dependency; without it, read the name only
         name = manifest_name(manifest)
         if not name:
@@ -88,7 +88,7 @@ def _read_manifest(manifest: Path, add) -> tuple[str, set[str] | None]:
     warnings: list[str] = []
     try:
         package = parse_package(str(manifest), warnings=warnings)
-    except (InvalidPackage, ValueError, Exception) as err:   # catkin_pkg raises plain Exceptions on bad XML
+    except Exception as err:   # InvalidPackage, ValueError, and plain Exceptions on bad XML
         add("package-xml", "error", f"catkin_pkg cannot parse package.xml: {' '.join(str(err).split())}",
             manifest, "fix package.xml (compare with one made by 'worldgen scaffold')")
         return manifest_name(manifest) or manifest.parent.name, None

@@ -19,11 +19,10 @@ from typing import Sequence
 
 from .grid import POST_PREFIX
 from .scene import Scene
-from .spec import Spec, load_spec
+from .spec import SPEC_SUFFIXES, Spec, load_spec
 
 FIGSIZE = (8.0, 8.0)   # inches
 DPI = 100              # so a picture is 800 × 800 pixels
-SPEC_SUFFIXES = (".yaml", ".yml", ".json", ".txt")
 
 WALL_COLOUR = "#3b3b3b"
 OBSTACLE_COLOUR = "#2f6db5"

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 from dataclasses import dataclass, field
 
 from .findings import SEVERITIES, Finding
@@ -82,12 +83,21 @@ def _clean(value):
     return value
 
 
+_SURROGATE = re.compile("[\ud800-\udfff]")
+
+
+def _unicode(text: str) -> str:
+    """``text`` that any UTF-8 stream can take: the undecodable bytes of a file name (which Python keeps as lone
+    surrogates) become U+FFFD."""
+    return _SURROGATE.sub("\ufffd", text)
+
+
 # ------------------------------------------------------------------------------------------------------ JSON
 
 def to_json(results: list[Result]) -> str:
     """``{"ok": bool, "results": [...]}``, indented, keys in a fixed order, ending with a newline."""
     doc = {"ok": all(r.ok for r in results), "results": [r.to_dict() for r in results]}
-    return json.dumps(doc, indent=2, allow_nan=False, ensure_ascii=False) + "\n"
+    return _unicode(json.dumps(doc, indent=2, allow_nan=False, ensure_ascii=False) + "\n")
 
 
 # ------------------------------------------------------------------------------------------------------ text
@@ -149,7 +159,7 @@ def to_text(results: list[Result]) -> str:
                 lines.append(f"            fix: {f.fix}")
     failed = sum(not r.ok for r in results)
     lines.append(f"{len(results)} file(s): {len(results) - failed} passed, {failed} failed")
-    return "\n".join(lines) + "\n"
+    return _unicode("\n".join(lines) + "\n")
 
 
 # ----------------------------------------------------------------------------------------------------- JUnit
@@ -168,19 +178,20 @@ def to_junit(results: list[Result]) -> bytes:
             by_check[r.check_of(f)].append(f)
         if "parse" not in r.checks and not by_check["parse"]:
             del by_check["parse"]
+        classname = _xml_safe(r.path)
         for check, found in by_check.items():
-            case = etree.SubElement(suite, "testcase", classname=r.path, name=check)
+            case = etree.SubElement(suite, "testcase", classname=classname, name=check)
             tests += 1
             errors = [f for f in found if f.severity == "error"]
             if errors:
                 failures += 1
-                failure = etree.SubElement(case, "failure", message=errors[0].message, type=check)
-                failure.text = "\n".join(_finding_line(f) for f in errors)
+                failure = etree.SubElement(case, "failure", message=_xml_safe(errors[0].message), type=check)
+                failure.text = _xml_safe("\n".join(_finding_line(f) for f in errors))
             others = [f for f in found if f.severity != "error"]
             if others:
-                etree.SubElement(case, "system-out").text = "\n".join(_finding_line(f) for f in others)
+                etree.SubElement(case, "system-out").text = _xml_safe("\n".join(_finding_line(f) for f in others))
         for check, why in r.skipped.items():
-            case = etree.SubElement(suite, "testcase", classname=r.path, name=check)
+            case = etree.SubElement(suite, "testcase", classname=classname, name=check)
             etree.SubElement(case, "skipped", message=why)
             tests += 1
             skipped += 1
@@ -190,6 +201,15 @@ def to_junit(results: list[Result]) -> bytes:
         element.set("errors", "0")
         element.set("skipped", str(skipped))
     return etree.tostring(suites, pretty_print=True, xml_declaration=True, encoding="UTF-8")
+
+
+_NOT_XML = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\ud800-\udfff\ufffe\uffff]")
+
+
+def _xml_safe(text: str) -> str:
+    """``text`` with what XML 1.0 cannot hold (control characters; the undecodable bytes of a file name, which
+    Python keeps as lone surrogates) replaced by U+FFFD."""
+    return _NOT_XML.sub("\ufffd", text)
 
 
 def _finding_line(f: Finding) -> str:

@@ -18,9 +18,12 @@ from typing import Sequence
 from .errors import InputError
 from .launch import format_number
 
-# Radius of the disc that holds each robot's footprint around base_footprint (ROBOTIS navigation parameters:
-# burger robot_radius 0.105 m; waffle and waffle_pi footprint corners up to 0.257 m from the centre).
-ROBOT_RADIUS = {"burger": 0.105, "waffle": 0.257, "waffle_pi": 0.257}
+# Radius of the disc that holds each robot's footprint around base_footprint: the farthest corner of the ROBOTIS
+# navigation footprint (burger x -0.105…0.041, y ±0.105; waffle and waffle_pi x -0.205…0.077, y ±0.155). Both
+# hold the robot's collision shapes (the burger's base box reaches 0.124 m, the waffle's 0.238 m), so a robot
+# spawned this far from a wall can turn in place there.
+ROBOT_RADIUS = {"burger": math.hypot(0.105, 0.105), "waffle": math.hypot(0.205, 0.155),
+                "waffle_pi": math.hypot(0.205, 0.155)}
 # The height band a TurtleBot3 occupies, where walls and obstacles are sliced: above a floor slab (Gazebo's
 # asphalt_plane is a 0.1 m box half sunk into the ground; the validator counts slabs up to 0.1 m as floor) and up
 # to the top of a burger (0.192 m) with some room.
@@ -30,6 +33,11 @@ _SPAWN_HINTS = {   # --spawn forms → how to write them (see parse_spawn)
     True: "write --spawn X,Y or X,Y,Z or X,Y,Z,YAW in metres and radians, e.g. --spawn 1.0,-0.5,0,1.57",
     False: "write --spawn X,Y or X,Y,YAW in metres and radians, e.g. --spawn -5.5,-1.0,1.57",
 }
+
+
+def robot_radius(model: str) -> float:
+    """:data:`ROBOT_RADIUS` of a model name; a burger's for anything else (``env``, a description file)."""
+    return ROBOT_RADIUS.get(model, ROBOT_RADIUS["burger"])
 
 
 def parse_spawn(text: str, z: bool = False) -> tuple[float, ...]:
@@ -161,7 +169,7 @@ def spawn_for_world(world_path: str | Path, model: str = "env", spawn: Sequence[
     from .sdf.reader import read_world
 
     world_path = Path(world_path)
-    rooms = world_rooms(read_world(world_path), ROBOT_RADIUS.get(model, ROBOT_RADIUS["burger"]))
+    rooms = world_rooms(read_world(world_path), robot_radius(model))
     if spawn is not None:
         return checked_spawn(rooms, spawn, source=world_path), "given"
     pose = _spec_pose(world_path)
@@ -170,25 +178,23 @@ def spawn_for_world(world_path: str | Path, model: str = "env", spawn: Sequence[
     return checked_spawn(rooms, None, source=world_path), ("world" if rooms.rooms() else "open")
 
 
-def spawn_in_scene(scene, model: str = "env", spawn: Sequence[float] | None = None, *,
-                   source: str | Path | None = None, what: str = "--spawn") -> Pose:
-    """:func:`checked_spawn` for a :class:`worldgen.scene.Scene` and a robot model."""
-    return checked_spawn(world_rooms(scene, ROBOT_RADIUS.get(model, ROBOT_RADIUS["burger"])), spawn,
-                         source=source, what=what)
+def spawn_in_scene(scene, model: str = "env", spawn: Sequence[float] | None = None, **how) -> Pose:
+    """:func:`checked_spawn` for a :class:`worldgen.scene.Scene` and a robot model (``how``: its keywords)."""
+    return checked_spawn(world_rooms(scene, robot_radius(model)), spawn, **how)
 
 
 def checked_spawn(rooms: Rooms, spawn: Sequence[float] | None, *, source: str | Path | None = None,
-                  what: str = "--spawn") -> Pose:
-    """``spawn`` (x, y[, z[, yaw]]) as a full pose when the robot may spawn there (InputError naming ``what``
-    otherwise), or, when None, the :func:`deepest_point` (InputError when the robot fits nowhere)."""
+                  what: str = "--spawn",
+                  hint: str = "choose a free point inside the room (or leave --spawn out to get one)") -> Pose:
+    """``spawn`` (x, y[, z[, yaw]]) as a full pose when the robot may spawn there (InputError naming ``what``,
+    with ``hint``, otherwise), or, when None, the :func:`deepest_point` (InputError when the robot fits
+    nowhere)."""
     if spawn is not None:
         pose = tuple(float(v) for v in spawn) + (0.0,) * (4 - len(spawn))
         problem = spawn_problem(rooms, pose[0], pose[1])
         if problem:
-
             raise InputError(f"{what} ({format_number(pose[0])}, {format_number(pose[1])}) is no place for the "
-                             f"robot: {problem}", path=source,
-                             hint="choose a free point inside the room (or leave --spawn out to get one)")
+                             f"robot: {problem}", path=source, hint=hint)
         return pose
     point = deepest_point(rooms)
     if point is None:
@@ -199,13 +205,13 @@ def checked_spawn(rooms: Rooms, spawn: Sequence[float] | None, *, source: str | 
 
 
 def spec_spawn(spec, world_text: str, model: str = "env") -> Pose:
-    """The spawn pose for the world built from ``spec``: the spec's robot pose, or without one the deepest point
-    of the room of ``world_text`` (the built world)."""
-    if spec.robot is not None:
-        return (spec.robot.at[0], spec.robot.at[1], 0.0, spec.robot.yaw)
+    """The spawn pose for the world built from ``spec``: the spec's robot pose, checked against ``world_text``
+    (the built world) as ``worldgen launch`` checks it, or without one the deepest point of its room."""
     from .sdf.reader import read_world_text
 
-    return spawn_in_scene(read_world_text(world_text, source=spec.source), model, source=spec.source)
+    pose = (spec.robot.at[0], spec.robot.at[1], 0.0, spec.robot.yaw) if spec.robot is not None else None
+    return spawn_in_scene(read_world_text(world_text, source=spec.source), model, pose, source=spec.source,
+                          what="the spec's robot pose", hint="move the robot's at: onto free floor inside the room")
 
 
 def _spec_pose(world_path: Path) -> Pose | None:

@@ -31,6 +31,7 @@ DOOR_HEIGHT = 2.0
 WINDOW_HEIGHT = 0.8
 WINDOW_SILL = 0.5
 ROBOT_MODELS = ("burger", "waffle", "waffle_pi")
+SPEC_SUFFIXES = (".yaml", ".yml", ".json", ".txt")   # the file names a spec has (a .txt is an ASCII grid)
 
 
 @dataclass(frozen=True)
@@ -126,6 +127,9 @@ DEFAULT_CELL = 0.5
 SHAPES = ("box", "cylinder", "sphere")
 OPENING_TYPES = ("door", "window")
 _NAME_RE = re.compile(r"[A-Za-z][A-Za-z0-9_]*\Z")
+# A number with an exponent (1e-05, 2E3): JSON and people write it, but YAML 1.1 reads it as text unless it has a
+# decimal point and a signed exponent (1.0e+3), so a plain (unquoted) scalar of this form is taken as the number.
+_EXPONENT_NUMBER = re.compile(r"[-+]?(\d+(\.\d*)?|\.\d+)[eE][-+]?\d+\Z")
 _EPS = 1e-9
 
 TOP_KEYS = ("name", "walls", "rooms", "segments", "grid", "obstacles", "robot")
@@ -142,9 +146,9 @@ MATERIAL_KEYS = ("script", "rgba")
 
 # How each required key is written, for "add …" hints.
 _EXAMPLE = {
-    "name": "name: my_world", "rect": "rect: {center: [0, 0], size: [5, 5]}", "center": "center: [0, 0]",
-    "size": "size: [5, 5]", "type": "type: door", "wall": "wall: 0", "from": "from: [0, 0]", "to": "to: [3, 0]",
-    "shape": "shape: box", "at": "at: [1.0, 0.5]", "radius": "radius: 0.2", "height": "height: 0.5",
+    "name": "name: my_world", "center": "center: [0, 0]", "size": "size: [5, 5]", "type": "type: door",
+    "wall": "wall: 0", "from": "from: [0, 0]", "to": "to: [3, 0]", "shape": "shape: box", "radius": "radius: 0.2",
+    "height": "height: 0.5",
     "rows": "rows: |  (then the grid lines, indented)",
 }
 
@@ -189,8 +193,8 @@ def parse_spec(text: str, source: str | None = None) -> Spec:
 
 
 def starter_spec(name: str) -> str:
-    """The commented starter spec ``worldgen new NAME`` writes: a 5 m × 5 m room with a door, a window, an
-    obstacle and the robot in the middle (from ``templates/spec/starter.yaml.j2``)."""
+    """The commented starter spec ``worldgen new NAME`` writes: a closed 5 m × 5 m room with a window, an
+    obstacle and the robot in the middle, a door offered commented out (``templates/spec/starter.yaml.j2``)."""
     from .resources import render_template
 
     check_name(name, "the world name")
@@ -228,9 +232,18 @@ def _describe(value: object) -> str:
         return "a list"
     if isinstance(value, dict):
         return "a mapping of keys"
-    if isinstance(value, (int, float)):
+    if isinstance(value, int):
+        return f"the number {value}" if abs(value) < 10 ** 20 else "a very long number"
+    if isinstance(value, float):
         return f"the number {value:g}"
     return f"a {type(value).__name__}"
+
+
+def _describe_sized(value: object) -> str:
+    """:func:`_describe` for a value that must be a list of so many numbers: a list says how long it is."""
+    if not isinstance(value, list):
+        return _describe(value)
+    return f"a list of {len(value)} number{'' if len(value) == 1 else 's'}"
 
 
 def _m(x: float) -> str:
@@ -252,30 +265,37 @@ def _compose(text: str, source: str | None) -> _Node | None:
     times faster on big specs; text it refuses is parsed again by the pure-Python parser, whose messages and
     marks the errors below are worded for, so an error reads the same (same line) with or without libyaml."""
     fast = getattr(yaml, "CSafeLoader", None)
-    if fast is not None:
-        loader = fast(text)
-        try:
-            root = loader.get_single_node()
-            return None if root is None else _convert(root, loader, {}, set(), source)
-        except yaml.YAMLError:
-            pass   # reported below
-        finally:
-            loader.dispose()
-    loader = yaml.SafeLoader(text)
     try:
-        root = loader.get_single_node()
-        return None if root is None else _convert(root, loader, {}, set(), source)
+        if fast is not None:
+            try:
+                return _nodes(fast(text), source)
+            except yaml.YAMLError:
+                pass   # reported by the pure-Python parser, below
+        return _nodes(yaml.SafeLoader(text), source)
     except yaml.MarkedYAMLError as err:
         mark = err.problem_mark or err.context_mark
         problem = err.problem or "the text is not valid YAML"
         hint = "check the indentation and brackets on this line and the one above"
         if "\\t" in problem or "\t" in problem:
             hint = "indent with spaces, not tabs"
-        context = f" {err.context}" if err.context else ""
-        raise SpecError(f"invalid YAML: {problem}{context}", path=source,
+        elif "another document" in problem:
+            hint = "a spec is one YAML document: remove this '---' and what follows, or put it in its own file"
+        # PyYAML words some errors as context then problem ("expected a single document … but found another")
+        parts = (err.context, problem) if problem.startswith("but ") else (problem, err.context)
+        raise SpecError(f"invalid YAML: {' '.join(p for p in parts if p)}", path=source,
                         line=mark.line + 1 if mark else None, hint=hint) from None
     except yaml.YAMLError as err:
         raise SpecError(f"invalid YAML: {err}", path=source) from None
+    except RecursionError:
+        raise SpecError("lists or blocks are nested too deeply", path=source,
+                        hint="a spec nests a few levels at most; check the brackets") from None
+
+
+def _nodes(loader, source: str | None) -> _Node | None:
+    """The single document ``loader`` reads, as _Nodes (None when the text holds none)."""
+    try:
+        root = loader.get_single_node()
+        return None if root is None else _convert(root, loader, {}, set(), source)
     finally:
         loader.dispose()
 
@@ -309,6 +329,8 @@ def _convert(node, loader, memo: dict, active: set, source) -> _Node:
             elif key in values and key not in merged:
                 raise SpecError(f"key '{key}' is given twice in the same block", path=source, line=key_line,
                                 hint=f"keep one; the first is on line {lines[key]}")
+            else:
+                merged.discard(key)   # the block's own value overrides the merged one; a third is a duplicate
             values[key] = _convert(value_node, loader, memo, active, source)
             lines[key] = key_line
         active.discard(id(node))
@@ -353,9 +375,14 @@ class _Reader:
 
     def number(self, node: _Node, what: str, hint: str | None = None) -> float:
         value = node.value
+        if isinstance(value, str) and not node.style and _EXPONENT_NUMBER.match(value):
+            value = float(value)   # 1e-05 as JSON writes it: a number, though YAML 1.1 reads text
         if isinstance(value, bool) or not isinstance(value, (int, float)):
             self.fail(f"{what} must be a number, not {_describe(value)}", node.line,
                       hint=hint or "write a plain number in metres, without quotes or units")
+        if isinstance(value, int) and abs(value) > 1e300:
+            self.fail(f"{what} is a {len(str(abs(value)))}-digit number", node.line,
+                      hint=hint or "write a plain number in metres")
         value = float(value)
         if not math.isfinite(value):
             self.fail(f"{what} must be a finite number, not {value}", node.line,
@@ -394,14 +421,13 @@ class _Reader:
         value = self.number(node, what, hint="write the angle in radians, e.g. 1.5708 for 90 degrees")
         if abs(value) > 2 * math.pi + _EPS:
             self.fail(f"{what} is {_m(value)}: angles are in radians, between -6.2832 and 6.2832", node.line,
-                      hint=f"for {value:g} degrees write {math.radians(value):.4f}")
+                      hint=f"for {value:g} degrees write {math.radians(math.fmod(value, 360)):.4f}")
         return value
 
     def point(self, node: _Node, what: str) -> Point:
         value = node.value
         if not isinstance(value, list) or len(value) != 2:
-            self.fail(f"{what} must be a point [x, y], not {_describe(value)}"
-                      + (f" of {len(value)} numbers" if isinstance(value, list) else ""), node.line,
+            self.fail(f"{what} must be a point [x, y], not {_describe_sized(value)}", node.line,
                       hint="write two numbers in metres, e.g. [1.0, 2.5]")
         return (self.coordinate(value[0], f"x of {what}"), self.coordinate(value[1], f"y of {what}"))
 
@@ -438,6 +464,9 @@ class _Reader:
 
     def script(self, node: _Node, what: str) -> str:
         name = node.value.strip()
+        if not name:
+            self.fail(f"{what} is empty", node.line, hint="write a Gazebo material like Gazebo/Grey, or give a "
+                                                           "colour [r, g, b, a]")
         if name in GAZEBO_MATERIALS:
             return name
         full = name if "/" in name else f"Gazebo/{name}"
@@ -456,7 +485,8 @@ class _Reader:
     def rgba(self, node: _Node, what: str) -> tuple[float, float, float, float]:
         value = node.value
         if not isinstance(value, list) or len(value) not in (3, 4):
-            self.fail(f"{what} colour must be a list [r, g, b, a] of numbers from 0 to 1, not {_describe(value)}",
+            self.fail(f"{what} colour must be a list [r, g, b, a] of numbers from 0 to 1, not "
+                      f"{_describe_sized(value)}",
                       node.line, hint="e.g. [0.8, 0.2, 0.2, 1]")
         parts = [self.number(v, f"{what} colour component") for v in value]
         for v, part in zip(value, parts):
@@ -545,7 +575,7 @@ class _Reader:
         cx, cy = self.point(keys["center"], f"center of {what}")
         size = keys["size"]
         if not isinstance(size.value, list) or len(size.value) != 2:
-            self.fail(f"size of {what} must be [width, depth] in metres, not {_describe(size.value)}", size.line,
+            self.fail(f"size of {what} must be [width, depth] in metres, not {_describe_sized(size.value)}", size.line,
                       hint="e.g. size: [5, 4]")
         w = self.length(size.value[0], f"width (x size) of {what}")
         d = self.length(size.value[1], f"depth (y size) of {what}")
@@ -566,7 +596,7 @@ class _Reader:
             self.fail(f"polygon of {what} must be a list of points [[x, y], …], not {_describe(items)}",
                       node.line, hint="e.g. polygon: [[0, 0], [4, 0], [4, 3], [0, 3]]")
         points = [self.point(p, f"corner {i} of {what}") for i, p in enumerate(items)]
-        if len(points) >= 4 and math.dist(points[0], points[-1]) < 1e-6:
+        if len(points) >= 4 and math.dist(points[0], points[-1]) < MIN_SIZE:
             points.pop()   # the first point repeated at the end closes the ring: the same polygon
         if len(points) < 3:
             self.fail(f"the polygon of {what} has {len(points)} point{'s' if len(points) != 1 else ''}; "
@@ -574,10 +604,12 @@ class _Reader:
                       hint="list the corners of the room in order, e.g. [[0, 0], [4, 0], [4, 3], [0, 3]]")
         for j in range(len(points)):
             for i in range(j):
-                if math.dist(points[i], points[j]) < 1e-6:
-                    self.fail(f"corner {j} of {what} repeats corner {i} ({_m(points[i][0])}, {_m(points[i][1])})",
-                              items[j].line, hint="remove it: list each corner once; only the first may be "
-                                                  "repeated at the end")
+                gap = math.dist(points[i], points[j])
+                if gap < MIN_SIZE:   # closer than 1 mm: one point, for the geometry too
+                    near = f" to within {_m(gap * 1000)} mm" if gap else ""
+                    self.fail(f"corner {j} of {what} repeats corner {i} ({_m(points[i][0])}, {_m(points[i][1])})"
+                              f"{near}", items[j].line,
+                              hint="remove it: list each corner once; only the first may be repeated at the end")
         crossing = _crossing_walls(points)
         if crossing:
             i, j = crossing
@@ -643,10 +675,14 @@ class _Reader:
             sill = self.distance(keys["sill"], f"sill of {what}") if "sill" in keys else WINDOW_SILL
 
         room_for = length - t
+        if room_for <= _EPS:
+            self.fail(f"{what} is on {where}, which is {_m(length)} m long: no longer than the walls are thick "
+                      f"({_m(t)} m), so it has no room for an opening", node.line,
+                      hint="put the opening on a longer wall, or remove it")
         if width > room_for + _EPS:
-            self.fail(f"{what} is {_m(width)} m wide, but {where} has only {_m(max(room_for, 0))} m between its "
+            self.fail(f"{what} is {_m(width)} m wide, but {where} has only {_m(room_for)} m between its "
                       f"corners ({_m(length)} m long, less {_m(t)} m of wall thickness)", line("width"),
-                      hint=f"make the width at most {_m(max(room_for, 0))}, or put it on a longer wall")
+                      hint=f"make the width at most {_m(room_for)}, or put it on a longer wall")
         offset = self.distance(keys["offset"], f"offset of {what}") if "offset" in keys else (length - width) / 2
         lo, hi = t / 2, length - t / 2 - width
         span = f"use an offset from {_m(lo)} to {_m(hi)} m, or leave offset out to centre the {kind}"
@@ -700,7 +736,7 @@ class _Reader:
         if shape == "box":
             s = keys["size"]
             if not isinstance(s.value, list) or len(s.value) != 3:
-                self.fail(f"size of {what} must be [x, y, z] in metres, not {_describe(s.value)}", s.line,
+                self.fail(f"size of {what} must be [x, y, z] in metres, not {_describe_sized(s.value)}", s.line,
                           hint="e.g. size: [0.5, 0.4, 0.8]")
             size = tuple(self.length(v, f"{axis} size of {what}") for v, axis in zip(s.value, "xyz"))
         else:
@@ -742,9 +778,16 @@ class _Reader:
             rows = value.split("\n")
             if rows and rows[-1] == "":
                 rows.pop()
-            first = rows_node.line + 1 if rows_node.style == "|" else rows_node.line
-            row_lines = [first + i if rows_node.style == "|" else first for i in range(len(rows))]
-        elif isinstance(value, list) and all(isinstance(r.value, str) for r in value):
+            if rows_node.style == "|":   # a literal block: row i is i + 1 lines below 'rows: |'
+                row_lines = [rows_node.line + 1 + i for i in range(len(rows))]
+            else:                        # one quoted text: every row is on its line
+                row_lines = [rows_node.line] * len(rows)
+        elif isinstance(value, list):
+            for i, row in enumerate(value):
+                if not isinstance(row.value, str):
+                    self.fail(f"grid row {i + 1} must be a line of text, not {_describe(row.value)}", row.line,
+                              hint='quote each row, e.g. - "#####" (an unquoted # starts a comment), or write '
+                                   "rows: | and the grid below it")
             rows, row_lines = [r.value for r in value], [r.line for r in value]
         else:
             self.fail(f"grid rows must be text lines, not {_describe(value)}", rows_node.line,

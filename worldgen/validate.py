@@ -22,8 +22,8 @@ from dataclasses import replace as dc_replace
 from pathlib import Path
 from typing import Callable, Sequence
 
-from .checks import (GEOMETRIC_CHECKS, SIM_CHECKS, RobotBody, check_enclosed, check_parse, check_spawn_clear,
-                     floor_under, robot_body, sim_findings)
+from .checks import (GEOMETRIC_CHECKS, SIM_CHECKS, check_enclosed, check_parse, check_spawn_clear, floor_under,
+                     robot_body, sim_findings)
 from .errors import InputError, SpecError, WorldFileError
 from .findings import Finding
 from .report import Result
@@ -32,7 +32,7 @@ SPEC_SUFFIXES = (".yaml", ".yml", ".json", ".txt")
 LAUNCH_SUFFIXES = (".launch", ".launch.xml")
 NO_HIT_CHOICES = ("inf", "zero")
 SIM_TIMEOUT = 120.0   # s of wall time for one world's simulation
-SIM_JOB = "worldgen.checks:simulate"
+SIM_JOB = "worldgen.sim.validate_job:simulate"
 
 
 @dataclass(frozen=True)
@@ -53,7 +53,8 @@ class Job:
     """One world to validate and what is known about it before it is read.
 
     ``world`` is the file to read (None when it could not be found: ``findings`` say why); ``spec`` is set for
-    spec inputs, whose world is built when the job runs. ``pre_checks`` are the checks already done while
+    spec inputs, whose world is built when the job runs from ``floorplan``, the spec as loaded while planning
+    (None when it could not be). ``pre_checks`` are the checks already done while
     planning (``launch``, ``package``), whose findings are in ``findings``. A ``package_only`` job is a
     package folder's own row: its package check and nothing to simulate.
     """
@@ -61,6 +62,7 @@ class Job:
     path: str
     world: Path | None = None
     spec: Path | None = None
+    floorplan: object | None = None
     spawn: tuple[float, float, float] | None = None
     spawn_source: str = ""
     robot: str = "burger"
@@ -103,7 +105,8 @@ def input_kind(path: Path) -> str:
     if path.suffix.lower() in SPEC_SUFFIXES:
         return "spec"
     try:
-        head = path.read_bytes()[:4096].decode("utf-8", "replace")
+        with open(path, "rb") as handle:
+            head = handle.read(4096).decode("utf-8", "replace")
     except OSError as err:
         raise InputError(f"cannot be read: {err.strerror}", path=path) from None
     launch_at, sdf_at = head.find("<launch"), head.find("<sdf")
@@ -187,10 +190,8 @@ def _launch_path_job(path: Path, display: str) -> Job:
     try:
         info = _read_launch(path)
     except WorldFileError as err:
-        where = err.path or str(path)
-        return Job(path=display, pre_checks=["launch"], findings=[Finding(
-            "launch", "error", err.message, where=f"{where}:{err.line}" if err.line else where,
-            fix=err.hint or "fix the launch file so that roslaunch can read it")])
+        return Job(path=display, pre_checks=["launch"], findings=[
+            _error_finding("launch", err, path, "fix the launch file so that roslaunch can read it")])
     return _launch_job(path, info, display)
 
 
@@ -247,12 +248,12 @@ def _spec_job(path: Path, display: str) -> Job:
     try:
         from .spec import load_spec
 
-        spec = load_spec(path)
+        job.floorplan = load_spec(path)
     except SpecError as err:
         job.findings.append(_parse_error(err, path))
         job.pre_checks.append("parse")
         return job
-    _take_spec_pose(job, spec, path)
+    _take_spec_pose(job, job.floorplan, path)
     return job
 
 
@@ -289,12 +290,11 @@ def _apply_options(job: Job, options: Options) -> Job:
 
 # ------------------------------------------------------------------------------------------------------- run
 
-def _spec_world_text(path: Path) -> str:
+def _spec_world_text(spec) -> str:
     from .geometry import build_geometry
     from .sdf.writer import world_sdf
-    from .spec import load_spec
 
-    return world_sdf(build_geometry(load_spec(path)))
+    return world_sdf(build_geometry(spec))
 
 
 @dataclass(frozen=True)
@@ -312,25 +312,20 @@ class WorldSource:
             return read_world_text(self.text, source=self.path, model_paths=model_paths)
         return read_world(self.path, model_paths=model_paths)
 
-    def job_kwargs(self) -> dict:
-        if self.text is not None:
-            return {"world_text": self.text, "source": str(self.path)}
-        return {"world": str(self.path)}
-
 
 def run_job(job: Job, options: Options) -> Result:
-    """Validate one job: read the world, run the geometric checks here and the simulated ones in one child
-    process. Never raises for a problem with the file: problems become findings."""
+    """Validate one job: read the world, run the geometric checks here and the simulated ones on the same scene
+    in one child process. Never raises for a problem with the file: problems become findings."""
     result = Result(path=job.path, spawn=job.spawn, spawn_source=job.spawn_source, robot=job.robot,
                     robot_source=job.robot_source, findings=list(job.findings), checks=list(job.pre_checks))
     if job.package_only:
         result.spawn, result.spawn_source = None, ""
         return result
     if job.spec is not None:
-        if any(f.severity == "error" for f in job.findings):
+        if job.floorplan is None:
             return _skip_rest(result, "the spec cannot be read")
         try:
-            source = WorldSource(job.spec.with_suffix(".world"), _spec_world_text(job.spec))
+            source = WorldSource(job.spec.with_suffix(".world"), _spec_world_text(job.floorplan))
         except SpecError as err:
             result.checks.append("parse")
             result.findings.append(_parse_error(err, job.spec))
@@ -343,9 +338,15 @@ def run_job(job: Job, options: Options) -> Result:
 
 def _parse_error(err, path: Path) -> Finding:
     """A file that cannot be read at all (WorldFileError, SpecError) as the ``parse`` check's finding."""
+    return _error_finding("parse", err, path, "fix the file so that Gazebo can load it")
+
+
+def _error_finding(check: str, err, path: Path, fix: str) -> Finding:
+    """A :class:`~worldgen.errors.WorldgenError` as an error finding of ``check``: its file and line, its hint
+    (else ``fix``)."""
     where = err.path or str(path)
-    return Finding("parse", "error", err.message, where=f"{where}:{err.line}" if err.line else where,
-                   fix=err.hint or "fix the file so that Gazebo can load it")
+    return Finding(check, "error", err.message, where=f"{where}:{err.line}" if err.line else where,
+                   fix=err.hint or fix)
 
 
 def _skip_rest(result: Result, why: str) -> Result:
@@ -377,22 +378,24 @@ def _run_world(result: Result, source: WorldSource, options: Options) -> Result:
         for name in SIM_CHECKS:
             result.skipped[name] = "--skip-sim"
         return result
-    _simulate(result, source, options, body, ground, floor["floor"])
+    _simulate(result, scene, options, ground, floor["floor"])
     return result
 
 
-def _simulate(result: Result, source: WorldSource, options: Options, body: RobotBody, ground: float,
-              floor: str | None) -> None:
-    """The simulated checks in one child process; a crash, a timeout or an error there becomes one error
-    finding naming the stage it happened in, and the checks it prevented are skipped."""
+def _simulate(result: Result, scene, options: Options, ground: float, floor: str | None) -> None:
+    """The simulated checks on ``scene`` in one child process (the scene handed over pickled, in a temporary
+    folder only this user can read); a crash, a timeout or an error there becomes one error finding naming the
+    stage it happened in, and the checks it prevented are skipped."""
+    import pickle
+
     from .errors import WorldgenError
     from .sim.process import SimCrashed, SimError, run_isolated
 
     with tempfile.TemporaryDirectory(prefix="worldgen_validate_") as tmp:
-        stage_file = Path(tmp) / "stage"
-        kwargs = {**source.job_kwargs(), "model_paths": [str(p) for p in options.model_paths],
-                  "robot": result.robot, "spawn": list(result.spawn), "no_hit": options.lidar_no_hit,
-                  "stage_file": str(stage_file)}
+        stage_file, scene_file = Path(tmp) / "stage", Path(tmp) / "scene.pickle"
+        scene_file.write_bytes(pickle.dumps(scene, protocol=pickle.HIGHEST_PROTOCOL))
+        kwargs = {"scene_file": str(scene_file), "robot": result.robot, "spawn": list(result.spawn),
+                  "no_hit": options.lidar_no_hit, "stage_file": str(stage_file)}
         try:
             numbers = run_isolated(SIM_JOB, kwargs, options.sim_timeout)
             failure = None
@@ -416,7 +419,7 @@ def _simulate(result: Result, source: WorldSource, options: Options, body: Robot
     for name in SIM_CHECKS:
         if name not in numbers["ran"]:
             result.skipped[name] = "not possible with this robot"
-    outcome = sim_findings(numbers, body, options.lidar_no_hit, ground, floor)
+    outcome = sim_findings(numbers, options.lidar_no_hit, ground, floor)
     result.findings += outcome.findings
     result.metrics.update(outcome.metrics)
     result.metrics["sim_seconds"] = numbers.get("sim_seconds")   # (not its wall time: reports are deterministic)

@@ -3,7 +3,8 @@
 A thin layer over :func:`worldgen.spec.load_spec`, :func:`worldgen.geometry.build_geometry` and
 :func:`worldgen.sdf.writer.planned_files`. The command gathers every output in one ``{path: text}`` mapping and
 writes it all-or-nothing, so further outputs (a package's worlds/ and launch/ folders, say) are one more
-``files.update(...)`` before the write. Only lxml and PyYAML are imported on this path, to keep it fast.
+``files.update(...)`` before the write. A plain build imports only lxml and PyYAML, to keep it fast; with
+``--package`` and no ``robot:`` in the spec, the robot's place is found in the built world (shapely, numpy).
 """
 
 from __future__ import annotations

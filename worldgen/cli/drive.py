@@ -10,36 +10,50 @@ from pathlib import Path
 
 import click
 
+from ..sim.exercise import BEHAVIOURS
 from . import EXIT_FAILED, EXIT_OK
 
 SIM_TIMEOUT = 300.0   # s of wall time for all runs together
 
 
+class FiniteFloat(click.FloatRange):
+    """A float in an optional range that must be finite: click lets ``nan`` through any range (every comparison
+    with it is false) and ``inf`` through open-ended ones."""
+
+    def convert(self, value, param, ctx):
+        number = super().convert(value, param, ctx)
+        if not math.isfinite(number):
+            self.fail(f"{value} is not a finite number.", param, ctx)
+        return number
+
+
 @click.command("drive")
 @click.argument("world", type=click.Path(path_type=Path))
-@click.option("--behavior", "--behaviour", "behaviour", type=click.Choice(["spin", "stop-at-wall"]),
+@click.option("--behavior", "--behaviour", "behaviour", type=click.Choice(BEHAVIOURS),
               default="stop-at-wall", show_default=True, help="The exercise to run.")
 @click.option("--robot", default=None, metavar="burger|waffle|waffle_pi|FILE",
               help="Robot model, or a .urdf/.urdf.xacro file. Default: the spec's, else burger.")
 @click.option("--spawn", default=None, metavar="X,Y[,YAW]",
               help="Spawn pose in metres and radians. Default: the spec's robot entry, else 0,0,0.")
-@click.option("--target", type=float, default=0.5, show_default=True, help="Stop-at-wall: distance to stop at (m).")
-@click.option("--kp", type=float, multiple=True,
+@click.option("--target", type=FiniteFloat(min=0.0, min_open=True), default=0.5, show_default=True,
+              help="Stop-at-wall: distance to stop at (m).")
+@click.option("--kp", type=FiniteFloat(), multiple=True,
               help="Proportional gain (repeat for several runs on one plot). Default 0.5.")
-@click.option("--ki", type=float, multiple=True, help="Integral gain (once for all runs, or once per run). Default 0.")
-@click.option("--kd", type=float, multiple=True,
+@click.option("--ki", type=FiniteFloat(), multiple=True,
+              help="Integral gain (once for all runs, or once per run). Default 0.")
+@click.option("--kd", type=FiniteFloat(), multiple=True,
               help="Derivative gain (once for all runs, or once per run). Default 0.")
-@click.option("--duration", type=click.FloatRange(min=0.1, max=600), default=None, metavar="S",
+@click.option("--duration", type=FiniteFloat(min=0.1, max=600), default=None, metavar="S",
               help="Simulated seconds per run. Default: 20 for stop-at-wall, one full turn for spin.")
-@click.option("--max-speed", type=click.FloatRange(min=0.01, max=1.0), default=0.22, show_default=True,
+@click.option("--max-speed", type=FiniteFloat(min=0.01, max=1.0), default=0.22, show_default=True,
               help="Stop-at-wall: speed limit of the command (m/s; burger 0.22, waffle 0.26).")
-@click.option("--omega", type=click.FloatRange(min=-3.0, max=3.0), default=1.0, show_default=True,
+@click.option("--omega", type=FiniteFloat(min=-3.0, max=3.0), default=1.0, show_default=True,
               help="Spin: turn rate (rad/s; burger at most 2.84, waffle 1.82).")
 @click.option("--rate", type=click.Choice(["5", "30"]), default="5", show_default=True,
               help="Stop-at-wall: control loop rate in Hz (the LiDAR's 5 Hz or the drive's 30 Hz).")
-@click.option("--front-angle", type=click.FloatRange(min=0.0, max=90.0), default=10.0, show_default=True,
+@click.option("--front-angle", type=FiniteFloat(min=0.0, max=90.0), default=10.0, show_default=True,
               metavar="DEG", help="Stop-at-wall: the front distance is the nearest beam within ±DEG of ahead.")
-@click.option("--tolerance", type=click.FloatRange(min=0.0), default=0.05, show_default=True,
+@click.option("--tolerance", type=FiniteFloat(min=0.0), default=0.05, show_default=True,
               help="Stop-at-wall: the run passes when it ends within this of the target (m).")
 @click.option("--lidar-no-hit", type=click.Choice(["inf", "zero"]), default="inf", show_default=True,
               help="What a beam that hits nothing reads: inf as in Gazebo, 0 as the real LDS-01 driver.")
@@ -60,9 +74,9 @@ def drive(world, behaviour, robot, spawn, target, kp, ki, kd, duration, max_spee
     turns in place and reports the drift. Exit status: 0 every run stopped where it should without touching
     anything, 1 a run touched something or missed the target band, 2 bad input.
     """
-    from ..errors import InputError
+    from ..errors import InputError, WorldgenError
     from ..fsio import check_free, write_files
-    from ..sim.process import run_isolated
+    from ..sim.process import SimCrashed, SimError, run_isolated
     from ..spawn import parse_spawn
     from ..validate import input_kind
 
@@ -83,7 +97,12 @@ def drive(world, behaviour, robot, spawn, target, kp, ki, kd, duration, max_spee
         "gains": gain_sets(kp, ki, kd), "target": target, "duration": duration, "max_speed": max_speed,
         "omega": omega, "rate": float(rate), "front_angle": front_angle, "no_hit": lidar_no_hit, "tolerance": tolerance,
         "model_paths": [str(p) for p in model_paths]}
-    result = run_isolated("worldgen.sim.exercise:drive_exercise", request, timeout=SIM_TIMEOUT)
+    try:
+        result = run_isolated("worldgen.sim.exercise:drive_exercise", request, timeout=SIM_TIMEOUT)
+    except (SimCrashed, SimError) as err:
+        raise WorldgenError(f"the simulation failed: {str(err).splitlines()[0]}", path=world,
+                            hint="'worldgen validate' says more about the world; please report it to the worldgen "
+                                 "developers if it loads in Gazebo") from None
     files = {}
     if plot is not None:
         from ..sim.plot import plot_png
@@ -101,9 +120,9 @@ def _robot_arg(robot: str | None) -> str | None:
     """Check the robot option here (a bad one is bad input, exit 2) and pass files as absolute paths."""
     if robot is None:
         return None
-    from ..robots import robot_file
+    from ..robots import MODELS, robot_file
     path = robot_file(robot)
-    return robot if robot in ("burger", "waffle", "waffle_pi") else str(path)
+    return robot if robot in MODELS else str(path)
 
 
 def gain_sets(kp: tuple, ki: tuple, kd: tuple) -> list[dict]:
@@ -117,9 +136,6 @@ def gain_sets(kp: tuple, ki: tuple, kd: tuple) -> list[dict]:
             raise InputError(f"--{name} is given {len(values)} times for {runs} runs",
                              hint=f"give --{name} once (used for every run) or once per run")
         columns[name] = list(values) * runs if len(values) == 1 else list(values) or [default] * runs
-    for name, values in columns.items():
-        if not all(math.isfinite(v) for v in values):
-            raise InputError(f"--{name} must be a finite number")
     return [{name: columns[name][i] for name in ("kp", "ki", "kd")} for i in range(runs)]
 
 

@@ -33,11 +33,13 @@ def preview(source: Path, output: Path | None, spawn: str | None, robot: str | N
 
     output = output or Path(f"{source.stem}.png")
     check_free([output], force)   # before the work; write_file checks again
+    pose = parse_spawn(spawn) if spawn is not None else None
     pic = picture(source, model_paths)
-    if spawn is not None:
-        pic = dataclasses.replace(pic, spawn=Spawn(*parse_spawn(spawn), robot or "burger"))
-    elif robot is not None and pic.spawn is not None:
-        pic = dataclasses.replace(pic, spawn=dataclasses.replace(pic.spawn, model=robot))
+    model = robot or (pic.spawn.model if pic.spawn else "burger")
+    if pose is not None:
+        pic = dataclasses.replace(pic, spawn=Spawn(*pose, model))
+    elif pic.spawn is not None:
+        pic = dataclasses.replace(pic, spawn=dataclasses.replace(pic.spawn, model=model))
     rays = None
     if lidar:
         if pic.spawn is None:

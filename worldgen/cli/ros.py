@@ -6,6 +6,7 @@ A thin layer over :mod:`worldgen.launch`, :mod:`worldgen.spawn`, :mod:`worldgen.
 from __future__ import annotations
 
 import os
+import re
 from pathlib import Path
 
 import click
@@ -51,6 +52,9 @@ def launch_command(world: Path, package: str | None, name: str | None, model: st
         launch_name += ".launch"
     if Path(launch_name).name != launch_name:
         raise InputError(f"--name {name!r} is a path, not a file name", hint="use -o DIR for the folder")
+    if not re.fullmatch(r"[A-Za-z0-9_][A-Za-z0-9_.+-]*", launch_name):
+        raise InputError(f"--name {name!r} cannot be passed to roslaunch",
+                         hint="name the launch file with letters, digits, '_', '-' and '.' only")
     pose, source = spawn_for_world(world, model, parse_spawn(spawn, z=True) if spawn else None)
     text = launch_xml(world.name, package, model, pose, node_refs, launch_name=launch_name)
     folder = output if output is not None else (world_pkg / "launch" if world_pkg is not None else Path("."))

@@ -49,9 +49,9 @@ def validate(paths, robot, spawn, launch_file, model_paths, fmt, junit, jobs, li
             results = run_jobs(planned, options, jobs, progress=lambda _result: bar.update(1))
     else:
         results = run_jobs(planned, options, jobs)
-    click.echo(to_json(results) if fmt == "json" else to_text(results), nl=False)
-    if junit is not None:
+    if junit is not None:   # first: when it cannot be written, exit 2 leaves stdout empty
         write_file(junit, to_junit(results), force=True)
+    click.echo(to_json(results) if fmt == "json" else to_text(results), nl=False)
     sys.exit(EXIT_OK if all(r.ok for r in results) else EXIT_FAILED)
 
 

@@ -120,6 +120,9 @@ def _process_xacro(path: Path, mappings: dict[str, str]) -> str:
         except (xml.parsers.expat.ExpatError, OSError) as err:
             raise InputError(f"xacro cannot read the robot description: {err}", path=path,
                              hint="fix the file (it must be well-formed XML)") from None
+        except RecursionError:
+            raise InputError("xacro recursed without end", path=path,
+                             hint="an include or a macro calls itself: break the cycle") from None
         finally:
             sa._eval_find, sa._eval_dict["find"] = saved
     return doc.toprettyxml(indent="  ")

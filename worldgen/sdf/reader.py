@@ -118,20 +118,27 @@ def _children(el, tag: str | None = None):
 class _Frames:
     """The named frames of one scope (a model, or the world) and their poses in the scope's frame.
 
-    Entries are resolved lazily so ``relative_to`` may name a sibling declared later; unknown names and cycles
-    fall back to the scope frame with a warning.
+    Every pose-bearing child (link, nested model or include, joint, frame) is an entry, placed on first use and
+    cached, so ``relative_to`` may name a sibling declared later. Names are looked up to their first entry (a
+    duplicate name is reported elsewhere) but each entry keeps its own pose. Unknown names and cycles fall back to
+    the scope frame with a warning.
     """
 
     def __init__(self, reader: _Reader, scope: str):
         self.reader, self.scope = reader, scope
-        self.raw: dict[str, tuple[np.ndarray, str | None, str]] = {}
+        self.entries: list[tuple[str, np.ndarray, str | None, str]] = []   # name, pose, relative_to, where
+        self.first: dict[str, int] = {}
         self.children: dict[str, _Frames] = {}
-        self.done: dict[str, np.ndarray] = {}
+        self.placed: dict[int, np.ndarray] = {}
 
-    def add(self, name: str, pose: np.ndarray, relative_to: str | None, where: str) -> None:
-        self.raw.setdefault(name, (pose, relative_to, where))
+    def add(self, name: str, pose: np.ndarray, relative_to: str | None, where: str) -> int:
+        """Record an entry; returns its index for :meth:`place`."""
+        self.entries.append((name, pose, relative_to, where))
+        self.first.setdefault(name, len(self.entries) - 1)
+        return len(self.entries) - 1
 
     def resolve(self, name: str, stack: tuple[str, ...] = ()) -> np.ndarray | None:
+        """The pose of the frame called ``name`` (``a::b`` for one inside nested model ``a``), or None."""
         if name in ("__model__", "world", ""):
             return poses.IDENTITY
         if "::" in name:
@@ -139,23 +146,25 @@ class _Frames:
             base, sub = self.resolve(head, stack), self.children.get(head)
             inner = sub.resolve(rest) if sub is not None else None
             return None if base is None or inner is None else base @ inner
-        if name in self.done:
-            return self.done[name]
-        if name not in self.raw or name in stack:
-            return None
-        pose, relative_to, where = self.raw[name]
-        base = poses.IDENTITY
-        if relative_to:
-            found = self.resolve(relative_to, stack + (name,))
-            if found is None:
-                why = "a cycle" if relative_to in stack + (name,) else "no frame of that name"
-                self.reader.note("pose", "warning", f"'{name}' in {self.scope} has relative_to='{relative_to}', "
-                                 f"{why} in that scope; treated as relative to its parent", where,
-                                 "name a sibling link, model, joint or frame, or drop relative_to")
-            else:
-                base = found
-        self.done[name] = base @ pose
-        return self.done[name]
+        index = self.first.get(name)
+        return None if index is None or name in stack else self.place(index, stack)
+
+    def place(self, index: int, stack: tuple[str, ...] = ()) -> np.ndarray:
+        """Entry ``index``'s pose in the scope frame, its ``relative_to`` resolved."""
+        if index not in self.placed:
+            name, pose, relative_to, where = self.entries[index]
+            base = poses.IDENTITY
+            if relative_to:
+                found = self.resolve(relative_to, stack + (name,))
+                if found is None:
+                    why = "a cycle" if relative_to in stack + (name,) else "no frame of that name"
+                    self.reader.note("pose", "warning", f"'{name}' in {self.scope} has relative_to='{relative_to}', "
+                                     f"{why} in that scope; treated as relative to its parent", where,
+                                     "name a sibling link, model, joint or frame, or drop relative_to")
+                else:
+                    base = found
+            self.placed[index] = base @ pose
+        return self.placed[index]
 
 
 class _Reader:
@@ -258,30 +267,27 @@ class _Reader:
         ``model`` receives the links (None at world level). Poses are resolved through the scope's frames.
         """
         frames = frames or _Frames(self, label)
-        nested: list[tuple[_Model, str | None]] = []
-        links: list[tuple[_Link, etree._Element]] = []
+        nested: list[tuple[_Model, int]] = []                  # with their frame entries
+        links: list[tuple[_Link, etree._Element, int]] = []
         for child in _children(el):
             tag = child.tag
             if tag == "model":
                 sub_frames = _Frames(self, f"model '{child.get('name')}'")
                 sub = self._model(child, f, static, sub_frames)
                 pose, rel = self._pose(child, f)
-                nested.append((sub, rel))
-                frames.add(sub.name, pose, rel, f.where(child))
+                nested.append((sub, frames.add(sub.name, pose, rel, f.where(child))))
                 frames.children.setdefault(sub.name, sub_frames)
             elif tag == "include":
                 sub_frames = _Frames(self, "an included model")
                 found = self._include(child, f, static, sub_frames)
                 if found is not None:
                     sub, pose, rel = found
-                    nested.append((sub, rel))
-                    frames.add(sub.name, pose, rel, f.where(child))
+                    nested.append((sub, frames.add(sub.name, pose, rel, f.where(child))))
                     frames.children.setdefault(sub.name, sub_frames)
             elif tag == "link" and model is not None:
                 pose, rel = self._pose(child, f)
                 link = _Link(child.get("name") or "link", pose)
-                links.append((link, child))
-                frames.add(link.name, pose, rel, f.where(child))
+                links.append((link, child, frames.add(link.name, pose, rel, f.where(child))))
             elif tag == "joint" and model is not None:
                 pose, rel = self._pose(child, f)
                 frames.add(child.get("name") or "", pose, rel or child.findtext("child", "").strip() or None,
@@ -296,11 +302,11 @@ class _Reader:
                           "the reader can place)", f.where(child))
         self._check_unique([m.name for m, _ in nested], f"models in {label}", f.where(el))
         if model is not None:
-            self._check_unique([link.name for link, _ in links], f"links in model '{model.name}'", f.where(el))
-        for sub, _ in nested:
-            sub.pose = frames.resolve(sub.name)
-        for link, link_el in links:
-            link.pose = frames.resolve(link.name)
+            self._check_unique([link.name for link, _, _ in links], f"links in model '{model.name}'", f.where(el))
+        for sub, entry in nested:
+            sub.pose = frames.place(entry)
+        for link, link_el, entry in links:
+            link.pose = frames.place(entry)
             self._link(link, link_el, f, model, frames)
             model.links.append(link)
         return [m for m, _ in nested]
@@ -376,15 +382,13 @@ class _Reader:
             return None
         name_override = (el.findtext("name") or "").strip() or None
         static_override = self._bool(el.find("static"), f, None)
-        pose_el = el.find("pose")
         resolved = self.resolver.resolve(uri, f.dir, want_dir=True)
         stock = resolved.model_name if resolved.model_name in STOCK_MODELS else None
         if resolved.path is None:
             if stock == "ground_plane":
                 self.note("include", "info", f"{uri}: Gazebo's stock ground plane, stood in for by a plane at "
                           "z = 0", where)
-                pose, rel = self._pose(el, f) if pose_el is not None else (poses.IDENTITY, None)
-                return _ground_plane(name_override or "ground_plane", where), pose, rel
+                return (_ground_plane(name_override or "ground_plane", where), *self._pose(el, f))
             if stock == "sun":
                 return None
             if resolved.remote:
@@ -398,8 +402,9 @@ class _Reader:
         model = self._load_included(resolved, where, parent_static, name_override, static_override, frames)
         if model is None:
             return None
-        pose, rel = self._pose(el, f) if pose_el is not None else (model.pose, None)
-        return model, pose, rel
+        if el.find("pose") is None:   # the include's pose replaces the model's own; without one, that stands
+            return model, model.pose, None
+        return (model, *self._pose(el, f))
 
     def _load_included(self, resolved: Resolved, where: str, parent_static: bool, name: str | None,
                        static: bool | None, frames: _Frames) -> _Model | None:
@@ -415,8 +420,9 @@ class _Reader:
                 return None
             path = sdf_file
         if path in self.include_stack or len(self.include_stack) >= _MAX_INCLUDE_DEPTH:
-            self.note("include", "error", f"{resolved.uri} includes itself (directly or through other models)",
-                      where, "break the include cycle")
+            why = ("includes itself (directly or through other models)" if path in self.include_stack else
+                   f"is nested more than {_MAX_INCLUDE_DEPTH} includes deep")
+            self.note("include", "error", f"{resolved.uri} {why}", where, "break the include cycle")
             return None
         try:
             root = _parse(path.read_bytes(), path)
@@ -531,9 +537,10 @@ class _Reader:
     def _apply_state(self, state, models: list[_Model], f: _File) -> None:
         """Apply Gazebo's first ``<state>``: model and link poses there are world-frame and win."""
         moved: list[str] = []
+        by_name = {m.name: m for m in models}
         for child in _children(state):
             if child.tag == "model":
-                self._state_model(child, {m.name: m for m in models}, f, moved)
+                self._state_model(child, by_name, f, moved)
             elif child.tag in ("insertions", "deletions"):
                 self.note("state", "warning", f"<state> has <{child.tag}>, which the reader does not apply",
                           f.where(child), "save the world again from Gazebo without them")
@@ -556,8 +563,9 @@ class _Reader:
             if moved is not None:
                 shift = float(np.linalg.norm(model.world[:2, 3] - model.pose[:2, 3]))
                 turn = abs(math.remainder(poses.yaw_of(model.world) - poses.yaw_of(model.pose), 2 * math.pi))
-                if shift >= 0.05 or turn >= math.radians(2):
-                    moved.append(f"'{name}' {shift:.2f} m" + (f", {math.degrees(turn):.0f}°" if turn >= 0.035 else ""))
+                turned = turn >= math.radians(2)
+                if shift >= 0.05 or turned:
+                    moved.append(f"'{name}' {shift:.2f} m" + (f", {math.degrees(turn):.0f}°" if turned else ""))
         scale = self._floats(el.findtext("scale"), 3, (1.0, 1.0, 1.0), f, el, f"state scale of '{name}'")
         if any(abs(s - 1.0) > 1e-9 for s in scale):
             self.note("state", "info", f"<state> scales model '{name}' by {_fmt(scale)}; the reader keeps its "

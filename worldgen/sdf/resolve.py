@@ -13,6 +13,7 @@ from __future__ import annotations
 import os
 from dataclasses import dataclass
 from pathlib import Path
+from urllib.parse import unquote
 
 from lxml import etree
 
@@ -33,13 +34,15 @@ class Resolved:
 
     @property
     def model_name(self) -> str:
-        """The model a URI names (``model://NAME/...``, the last part of a Fuel URL), lower-cased with ``_``."""
-        text = self.uri.rstrip("/")
+        """The model a URI names (``model://NAME/...``; a Fuel URL's ``.../models/NAME[/VERSION]``, spaces
+        maybe written ``%20``; else the last part of the path), lower-cased with ``_``."""
+        text = self.uri.strip().rstrip("/")
         if text.startswith("model://") and not text.startswith("model:///"):
-            text = text[len("model://"):].split("/")[0]
+            name = text[len("model://"):].split("/")[0]
         else:
-            text = text.rsplit("/", 1)[-1]
-        return text.strip().lower().replace(" ", "_")
+            parts = unquote(text).split("/")
+            name = parts[parts.index("models") + 1] if self.remote and "models" in parts[:-1] else parts[-1]
+        return name.strip().lower().replace(" ", "_")
 
 
 def _split_paths(value: str | None) -> list[Path]:
@@ -116,17 +119,14 @@ class Resolver:
 
     def _lookup(self, name: str, rest: str, want_dir: bool) -> Path | None:
         """``NAME/rest`` under the search folders (then the env-less package fallbacks)."""
-        def ok(p: Path) -> bool:
-            return p.is_dir() if want_dir else p.is_file()
-
         for base in self.search:  # cheap first: no crawling when the explicit paths have it
-            if ok(base / name / rest):
+            if self._ok(base / name / rest, want_dir):
                 return base / name / rest
         for base in self.model_dirs()[len(self.search):]:
-            if ok(base / name / rest):
+            if self._ok(base / name / rest, want_dir):
                 return base / name / rest
         package = self.package_dir(name)
-        if package is not None and ok(package / rest):
+        if package is not None and self._ok(package / rest, want_dir):
             return package / rest
         return None
 

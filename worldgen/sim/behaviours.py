@@ -32,7 +32,7 @@ def settle(session: Session, seconds: float = 1.0) -> SettleResult:
     """Stand still for ``seconds`` (zero command) and say whether the robot rests upright on the ground."""
     start = session.odometry()
     session.cmd_vel(0.0, 0.0)
-    session.reset_touches()
+    session.start_exercise()
     session.run(seconds)
     end = session.odometry()
     return SettleResult(upright=abs(end.roll) < UPRIGHT_TILT and abs(end.pitch) < UPRIGHT_TILT,
@@ -64,7 +64,7 @@ def spin(session: Session, seconds: float = 2 * math.pi, omega: float = 1.0, sam
     """Turn in place at ``omega`` rad/s for ``seconds``, then command a stop and let it come to rest
     (0.5 s). A diff-drive robot turns about the midpoint of its wheels, so the base frame should stay put."""
     start = session.odometry()
-    session.reset_touches()
+    session.start_exercise()
     series: dict[str, list[float]] = {"t": [], "x": [], "y": [], "yaw": [], "drift": []}
     turned, last_yaw, max_drift = 0.0, start.yaw, 0.0
     session.cmd_vel(0.0, omega)
@@ -127,7 +127,7 @@ def stop_at_wall(session: Session, target: float = 0.5, kp: float = 0.5, ki: flo
         session.scan()   # raises the "no LiDAR" error
     period = 1.0 / rate
     start_t = session.t
-    session.reset_touches()
+    session.start_exercise()
     series: dict[str, list] = {"t": [], "measured": [], "true": [], "v_cmd": [], "v": []}
     integral, last_error = 0.0, None
     for _ in range(max(1, round(duration / period))):

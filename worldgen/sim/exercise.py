@@ -14,7 +14,7 @@ from ..scene import Scene
 
 BEHAVIOURS = ("spin", "stop-at-wall")
 SETTLE_SECONDS = 0.5   # the robot comes to rest on its wheels and caster before each run
-DEFAULT_DURATION = {"spin": None, "stop-at-wall": 20.0}   # spin: one full turn
+STOP_DURATION = 20.0   # s of stop-at-wall when no duration is given (a spin's default is one full turn)
 
 
 def load_world(path: str, kind: str = "world", model_paths=()) -> tuple[Scene, dict | None]:
@@ -45,7 +45,9 @@ def drive_exercise(world: str, kind: str = "world", behaviour: str = "stop-at-wa
     """Run ``behaviour`` in ``world`` and return what happened: the robot and spawn pose used (and where they
     came from), one result per gain set (spin: one run), simulated and wall-clock seconds.
 
-    Robot and spawn pose: the arguments when given, else the spec's ``robot`` entry, else burger at the origin.
+    Robot and spawn pose: the arguments when given, else the spec's ``robot`` entry, else burger at the origin; a
+    spawn inside a wall or an obstacle, closer to one than the robot's radius or outside the room is an
+    InputError.
     ``front_angle`` (degrees) is the half-width of the cone whose nearest beam is the front distance.
     """
     from .behaviours import settle, spin, stop_at_wall
@@ -62,6 +64,7 @@ def drive_exercise(world: str, kind: str = "world", behaviour: str = "stop-at-wa
         spawn_used, spawn_source = [float(v) for v in spec_robot["spawn"]], "the spec's robot entry"
     else:
         spawn_used, spawn_source = [0.0, 0.0, 0.0], "the world's origin"
+    _check_spawn(scene, robot_used, spawn_used, spawn_source, world)
     runs, sim_seconds = [], 0.0
     for gain in (gains or [{"kp": 0.5, "ki": 0.0, "kd": 0.0}]) if behaviour == "stop-at-wall" else [{}]:
         with Session(scene, robot_used, spawn_used, no_hit=no_hit, seed=seed) as session:
@@ -70,7 +73,7 @@ def drive_exercise(world: str, kind: str = "world", behaviour: str = "stop-at-wa
                 result = spin(session, seconds=duration or 2 * math.pi / abs(omega or 1.0), omega=omega)
             else:
                 result = stop_at_wall(session, target=target, kp=gain.get("kp", 0.0), ki=gain.get("ki", 0.0),
-                                      kd=gain.get("kd", 0.0), duration=duration or DEFAULT_DURATION[behaviour],
+                                      kd=gain.get("kd", 0.0), duration=duration or STOP_DURATION,
                                       max_speed=max_speed, rate=rate, half_angle=math.radians(front_angle),
                                       band=band, tolerance=tolerance)
             runs.append({**result.to_dict(), "settle": rest.to_dict()})
@@ -78,3 +81,19 @@ def drive_exercise(world: str, kind: str = "world", behaviour: str = "stop-at-wa
     return {"world": world, "behaviour": behaviour, "robot": robot_used, "spawn": spawn_used,
             "spawn_source": spawn_source, "scene_findings": [f.to_dict() for f in scene.findings],
             "runs": runs, "sim_seconds": sim_seconds, "wall_seconds": time.perf_counter() - started}
+
+
+def _check_spawn(scene: Scene, robot: str, spawn: list[float], source: str, world: str) -> None:
+    """InputError when ``spawn`` is inside a wall or an obstacle, closer to one than the robot's radius, or
+    outside the world's room (as ``worldgen launch`` refuses it), with the room's deepest point as a hint."""
+    from ..launch import format_number
+    from ..spawn import checked_spawn, deepest_point, robot_radius, spawn_problem, world_rooms
+
+    rooms = world_rooms(scene, robot_radius(robot))
+    if spawn_problem(rooms, spawn[0], spawn[1]) is None:
+        return
+    point = deepest_point(rooms)
+    hint = "pass --spawn X,Y: a free point inside the room"
+    if point is not None:
+        hint += f", e.g. --spawn {format_number(point[0])},{format_number(point[1])} (the deepest one)"
+    checked_spawn(rooms, spawn[:2], source=world, what=source, hint=hint)

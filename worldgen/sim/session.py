@@ -98,7 +98,6 @@ class Session:
         self.time_step = time_step
         self.no_hit = no_hit
         self.rng = np.random.default_rng(seed) if noise else None
-        self.t = 0.0
         self.touches = TouchLog()
         self._steps = 0
         source = robot_file(robot)
@@ -173,25 +172,32 @@ class Session:
         """Publish a velocity command (m/s forward, rad/s CCW); it holds until the next one."""
         self.drive.command = (float(v), float(omega))
 
-    def reset_touches(self) -> None:
-        """Forget the contacts logged so far (behaviours call this at their start)."""
+    def start_exercise(self) -> None:
+        """Forget the contacts logged so far and restart the drive plugin's ramp from the wheels' measured speeds,
+        so that an exercise neither reports a previous one's touches nor inherits the stale ramp state it left
+        (see :mod:`.drive`). Behaviours call this at their start."""
         self.touches = TouchLog()
+        self.drive.ramped = list(self.wheel_rim_speeds())
 
     def run(self, seconds: float) -> None:
-        """Advance the simulation by ``seconds`` (whole steps), updating the drive at its rate and logging every
-        contact with the scene at each drive update."""
+        """Advance the simulation by ``seconds`` (whole steps), updating the drive at its rate from the wheels'
+        measured speeds and logging every contact with the scene at each drive update."""
         for _ in range(max(0, round(seconds / self.time_step))):
             if self._steps % self._update_every == 0:
-                left, right = self.drive.update(self._update_every * self.time_step)
+                left, right = self.drive.update(self._update_every * self.time_step, self.wheel_rim_speeds())
                 for joint, speed in zip(self.wheels, (left, right)):
                     pb.setJointMotorControl2(self.robot, joint, pb.VELOCITY_CONTROL, targetVelocity=speed,
                                              force=self.drive.params.torque, physicsClientId=self.client)
                 self.touches.add(self.t, self.contacts())
             pb.stepSimulation(physicsClientId=self.client)
             self._steps += 1
-            self.t = self._steps * self.time_step
 
     # -- state -----------------------------------------------------------------------------------------------
+
+    @property
+    def t(self) -> float:
+        """Simulated seconds since the session started."""
+        return self._steps * self.time_step
 
     def link_pose(self, link: str | int):
         """World position and quaternion (x, y, z, w) of a robot link's frame (name or index; -1 = root)."""
@@ -203,6 +209,11 @@ class Session:
             return pb.multiplyTransforms(com_pos, com_orn, inv_pos, inv_orn)
         state = pb.getLinkState(self.robot, index, computeForwardKinematics=True, physicsClientId=self.client)
         return state[4], state[5]
+
+    def wheel_rim_speeds(self) -> tuple[float, float]:
+        """The drive wheels' measured rim speeds (left, right) in m/s: joint speed × the drive's wheel radius."""
+        states = pb.getJointStates(self.robot, self.wheels, physicsClientId=self.client)
+        return states[0][1] * self.drive.params.wheel_radius, states[1][1] * self.drive.params.wheel_radius
 
     def odometry(self) -> Odometry:
         (x, y, z), quat = self.link_pose(self.base_index)
@@ -241,18 +252,6 @@ class Session:
             if key not in found or dist < found[key].distance:
                 found[key] = contact
         return sorted(found.values(), key=lambda c: (c.distance, c.link, c.shape))
-
-    def min_clearance(self, max_dist: float = 1.0) -> Contact | None:
-        """The closest approach between the robot and any scene shape but the ground, if within ``max_dist``."""
-        best = None
-        for body in self.bodies.obstacle_bodies:
-            for pt in pb.getClosestPoints(self.robot, body, max_dist, physicsClientId=self.client):
-                if best is None or pt[8] < best[8]:
-                    best = pt
-        if best is None:
-            return None
-        return Contact(self.link_name.get(best[3], str(best[3])), self.bodies.label(best[2], best[6]), best[8],
-                       tuple(best[6]))
 
     # -- teardown --------------------------------------------------------------------------------------------
 

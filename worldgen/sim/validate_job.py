@@ -1,0 +1,144 @@
+"""``worldgen validate``'s simulated checks as one job: spawn the robot in the scene, let it settle, take a
+360-beam scan, spin in place, then stop at the wall ahead; plain numbers back, which
+:func:`worldgen.checks.sim_findings` judges.
+
+:func:`simulate` is what the validating process starts in a child (``run_isolated(
+"worldgen.sim.validate_job:simulate", kwargs)``). The parent hands over the scene it already read, pickled into
+its own private temporary folder, so a world is read once per validation and the simulator drives in exactly
+the scene the geometric checks looked at. :func:`sim_numbers` is the same job on a scene in this process.
+"""
+
+from __future__ import annotations
+
+import math
+import pickle
+import time
+
+from ..checks import STOP_TARGET
+from ..scene import Scene
+
+SETTLE_SECONDS = 1.0
+SPIN_OMEGA = 1.5            # rad/s: within both the burger's (2.84) and the waffle's (1.82) limits
+STOP_KP = 1.0
+STOP_SPEED = 0.22           # m/s: the burger's top speed
+FACE_TOLERANCE = math.radians(2)
+
+
+def simulate(scene_file: str, robot: str = "burger", spawn: list[float] = (0.0, 0.0, 0.0), no_hit: str = "inf",
+             stage_file: str | None = None) -> dict:
+    """The job in a child process: :func:`sim_numbers` on the scene pickled in ``scene_file`` (written by the
+    parent into its own temporary folder)."""
+    with open(scene_file, "rb") as handle:
+        scene = pickle.load(handle)
+    return sim_numbers(scene, robot, spawn, no_hit, stage_file)
+
+
+def sim_numbers(scene: Scene, robot: str = "burger", spawn=(0.0, 0.0, 0.0), no_hit: str = "inf",
+                stage_file: str | None = None) -> dict:
+    """Run the simulated checks on ``scene`` and return plain numbers (JSON-safe).
+
+    Spawns ``robot`` at ``spawn`` (x, y, yaw), lets it settle, takes a 360-beam scan, spins in place, then drives
+    to :data:`~worldgen.checks.STOP_TARGET` from the nearest wall ahead (turning to face the nearest wall first
+    when nothing is within range ahead). Each stage is written to ``stage_file`` before it starts, so that a
+    crash can be reported as "while <stage>".
+    """
+    from .behaviours import settle, spin, stop_at_wall
+    from .session import Session
+
+    def stage(text: str) -> None:
+        if stage_file:
+            with open(stage_file, "w", encoding="utf-8") as fh:
+                fh.write(text)
+
+    started = time.perf_counter()
+    stage("loading the world and the robot")
+    numbers: dict = {"ran": [], "failed": {}}
+    with Session(scene, robot, tuple(spawn), no_hit=no_hit) as session:
+        stage("letting the robot settle")
+        rest = settle(session, SETTLE_SECONDS)
+        numbers["ran"].append("settle")
+        numbers["settle"] = {"time": SETTLE_SECONDS, "z": rest.z, "moved": rest.drift,
+                             "tilt_deg": math.degrees(max(abs(rest.roll), abs(rest.pitch))),
+                             "contact_points": _touched_points(rest.contacts)}
+        numbers["ran"].append("lidar")
+        if session.lidar is None:
+            numbers["failed"]["lidar"] = "the robot has no LiDAR (no ray sensor and no base_scan link)"
+        else:
+            stage("scanning with the LiDAR")
+            numbers["lidar"] = _scan_numbers(session.scan())
+        stage("spinning in place")
+        turn = spin(session, seconds=2 * math.pi / SPIN_OMEGA, omega=SPIN_OMEGA)
+        numbers["ran"].append("spin")
+        numbers["spin"] = {"drift": turn.max_drift, "turned": turn.turned, "touched": _touched(turn.contacts),
+                           "contact_points": _touched_points(turn.contacts)}
+        if session.lidar is not None:
+            stage("driving to the wall")
+            numbers["stop"] = _stop_at_wall(session, stop_at_wall)
+            numbers["ran"].append("stop-at-wall")
+        numbers["sim_seconds"] = session.t
+    numbers["wall_seconds"] = time.perf_counter() - started
+    stage("done")
+    return numbers
+
+
+def _scan_numbers(scan) -> dict:
+    true = scan.true_ranges
+    hits = [(r, i) for i, r in enumerate(true) if math.isfinite(r)]
+    misses = [i for i, r in enumerate(true) if not math.isfinite(r)]
+    nearest = min(hits) if hits else None
+    return {"beams": len(true), "no_hit": len(misses), "range_max": scan.range_max,
+            "no_hit_reading": scan.ranges[misses[0]] if misses else None,
+            "no_hit_bearings_deg": [math.degrees(scan.angle_min + i * scan.angle_increment) for i in misses[:1]],
+            "nearest": nearest[0] if nearest else None,
+            "nearest_bearing_deg": math.degrees(scan.angle_min + nearest[1] * scan.angle_increment)
+            if nearest else None,
+            "farthest": max(hits)[0] if hits else None,
+            "ranges_sample": [scan.ranges[i] for i in range(0, len(scan.ranges), 90)]}
+
+
+def _touched(contacts: list[dict]) -> list[str]:
+    return sorted({c["shape"] for c in contacts})
+
+
+def _touched_points(contacts: list[dict]) -> list:
+    return [{"shape": c["shape"], "link": c["link"], "time": c["time"]} for c in contacts[:3]]
+
+
+def _stop_at_wall(session, stop_at_wall) -> dict:
+    """Face the nearest wall when nothing is in range straight ahead, then run the P controller to the target."""
+    from .lidar import front_distance
+
+    scan = session.scan(noise=False)
+    ahead = front_distance(scan, true=True)
+    turned = False
+    if ahead is None:
+        hits = [(r, i) for i, r in enumerate(scan.true_ranges) if math.isfinite(r)]
+        if not hits:
+            return {"no_wall": True, "range": scan.range_max, "distance": None, "touched": []}
+        _, i = min(hits)
+        _face(session, scan.angle_min + i * scan.angle_increment)
+        turned = True
+        ahead = front_distance(session.scan(noise=False), true=True)
+        if ahead is None:
+            return {"no_wall": True, "range": scan.range_max, "distance": None, "touched": []}
+    # long enough to cross the whole LiDAR range: what is ahead may change as the robot passes obstacles
+    duration = (scan.range_max - STOP_TARGET) / STOP_SPEED + 10.0
+    start_t = session.t
+    run = stop_at_wall(session, target=STOP_TARGET, kp=STOP_KP, duration=duration, max_speed=STOP_SPEED)
+    return {"distance": run.final_distance, "touched": _touched(run.contacts),
+            "contact_points": _touched_points(run.contacts), "time": session.t - start_t,
+            "start_distance": ahead, "turned_to_face": turned, "overshoot": run.overshoot,
+            "heading_deg": math.degrees(session.odometry().yaw)}
+
+
+def _face(session, bearing: float) -> None:
+    """Turn in place until the robot faces ``bearing`` (rad, relative to its heading now)."""
+    target = session.odometry().yaw + bearing
+    for _ in range(200):   # at most 20 s
+        error = math.remainder(target - session.odometry().yaw, math.tau)
+        if abs(error) < FACE_TOLERANCE:
+            break
+        session.cmd_vel(0.0, max(-SPIN_OMEGA, min(SPIN_OMEGA, 2.0 * error)))
+        session.run(0.1)
+    session.cmd_vel(0.0, 0.0)
+    session.run(0.3)
