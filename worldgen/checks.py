@@ -17,6 +17,7 @@ from pathlib import Path
 
 from .findings import Finding
 from .scene import Scene
+from .spec import ROBOT_MODELS
 
 GEOMETRIC_CHECKS = ("parse", "enclosed", "spawn-clear")
 SIM_CHECKS = ("settle", "lidar", "spin", "stop-at-wall")
@@ -56,7 +57,7 @@ def robot_body(robot: str = "burger") -> RobotBody:
     from .robots.profile import robot_profile
 
     urdf = robot_urdf(robot)
-    name = str(robot) if str(robot) in ("burger", "waffle", "waffle_pi") else Path(str(robot)).name
+    name = str(robot) if str(robot) in ROBOT_MODELS else Path(str(robot)).name
     try:
         return _body_from_urdf(urdf, robot_profile(urdf, source=str(robot)), name=name)
     except ValueError as err:   # a size, origin or joint value that is not a number

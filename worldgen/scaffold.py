@@ -229,13 +229,12 @@ def package_files(req: PackageRequest, worlds: Mapping[str, str] | None = None,
 def world_from_spec(spec_path: str | Path, model: str = "env") -> tuple[str, str, tuple[float, ...]]:
     """Build the world of the spec at ``spec_path``: its file name ``NAME.world``, its SDF text and the robot's
     spawn pose (x, y, z, yaw): the spec's robot pose, or without one the deepest point of the room."""
-    from .geometry import build_geometry
+    from .sdf.writer import spec_world_sdf
     from .spawn import spec_spawn
-    from .sdf.writer import world_sdf
     from .spec import load_spec
 
     spec = load_spec(spec_path)
-    world_text = world_sdf(build_geometry(spec))
+    world_text = spec_world_sdf(spec)
     spawn = spec_spawn(spec, world_text, model)
     return f"{spec.name}.world", world_text, spawn
 

@@ -215,20 +215,13 @@ def spec_spawn(spec, world_text: str, model: str = "env") -> Pose:
 
 
 def _spec_pose(world_path: Path) -> Pose | None:
-    from .errors import SpecError
+    from .spec import spec_beside
 
-    for suffix in (".yaml", ".yml", ".json"):
-        spec_path = world_path.with_suffix(suffix)
-        if spec_path.is_file():
-            from .spec import load_spec
-            try:
-                spec = load_spec(spec_path)
-            except SpecError:
-                return None
-            if spec.robot is not None:
-                return (spec.robot.at[0], spec.robot.at[1], 0.0, spec.robot.yaw)
-            return None
-    return None
+    found = spec_beside(world_path)
+    if found is None or found[1].robot is None:
+        return None
+    robot = found[1].robot
+    return (robot.at[0], robot.at[1], 0.0, robot.yaw)
 
 
 def _polygons(geometry) -> list:

@@ -165,6 +165,19 @@ GAZEBO_MATERIALS = (
 )
 
 
+def spec_beside(world_path: str | Path) -> tuple[Path, Spec] | None:
+    """The spec a world was built from, when it lies beside it with the same name (``room.world`` ←
+    ``room.yaml``/``.yml``/``.json``) and loads; None otherwise."""
+    for suffix in (".yaml", ".yml", ".json"):
+        spec_path = Path(world_path).with_suffix(suffix)
+        if spec_path.is_file():
+            try:
+                return spec_path, load_spec(spec_path)
+            except SpecError:
+                return None
+    return None
+
+
 def load_spec(path: str | Path) -> Spec:
     """Read and validate a floorplan spec: YAML or JSON, or a ``.txt`` ASCII grid (cell 0.5 m, named after the
     file). Raises SpecError naming the file and line of the first problem."""

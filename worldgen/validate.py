@@ -27,8 +27,8 @@ from .checks import (GEOMETRIC_CHECKS, SIM_CHECKS, check_enclosed, check_parse, 
 from .errors import InputError, SpecError, WorldFileError
 from .findings import Finding
 from .report import Result
+from .spec import ROBOT_MODELS, SPEC_SUFFIXES, spec_beside
 
-SPEC_SUFFIXES = (".yaml", ".yml", ".json", ".txt")
 LAUNCH_SUFFIXES = (".launch", ".launch.xml")
 NO_HIT_CHOICES = ("inf", "zero")
 SIM_TIMEOUT = 120.0   # s of wall time for one world's simulation
@@ -213,7 +213,7 @@ def _take_launch_pose(job: Job, info, path: Path) -> None:
     pose = _pose3(info.spawn)
     if pose is not None:
         job.spawn, job.spawn_source = pose, f"from launch file {path}"
-    if info.model in ("burger", "waffle", "waffle_pi"):
+    if info.model in ROBOT_MODELS:
         job.robot, job.robot_source = info.model, f"from launch file {path}"
 
 
@@ -266,16 +266,9 @@ def _take_spec_pose(job: Job, spec, path: Path) -> None:
 
 def _spec_beside(job: Job, world: Path) -> None:
     """A world built by ``worldgen build`` has its spec beside it (same name): take the robot pose from it."""
-    for suffix in (".yaml", ".yml", ".json"):
-        spec_path = world.with_suffix(suffix)
-        if spec_path.is_file():
-            try:
-                from .spec import load_spec
-
-                _take_spec_pose(job, load_spec(spec_path), spec_path)
-            except SpecError:
-                pass
-            return
+    found = spec_beside(world)
+    if found is not None:
+        _take_spec_pose(job, found[1], found[0])
 
 
 def _apply_options(job: Job, options: Options) -> Job:
@@ -289,13 +282,6 @@ def _apply_options(job: Job, options: Options) -> Job:
 
 
 # ------------------------------------------------------------------------------------------------------- run
-
-def _spec_world_text(spec) -> str:
-    from .geometry import build_geometry
-    from .sdf.writer import world_sdf
-
-    return world_sdf(build_geometry(spec))
-
 
 @dataclass(frozen=True)
 class WorldSource:
@@ -324,8 +310,10 @@ def run_job(job: Job, options: Options) -> Result:
     if job.spec is not None:
         if job.floorplan is None:
             return _skip_rest(result, "the spec cannot be read")
+        from .sdf.writer import spec_world_sdf
+
         try:
-            source = WorldSource(job.spec.with_suffix(".world"), _spec_world_text(job.floorplan))
+            source = WorldSource(job.spec.with_suffix(".world"), spec_world_sdf(job.floorplan))
         except SpecError as err:
             result.checks.append("parse")
             result.findings.append(_parse_error(err, job.spec))

@@ -19,8 +19,9 @@ from .. import rospkg
 from ..errors import InputError, WorldFileError
 from ..resources import robots_dir
 from ..safexml import parse_bytes
+from ..spec import ROBOT_MODELS
 
-MODELS = ("burger", "waffle", "waffle_pi")
+MODELS = ROBOT_MODELS   # the TurtleBot3 models we describe
 _XACRO_LOCK = threading.Lock()  # xacro keeps its state in module globals
 
 

@@ -13,8 +13,8 @@ from pathlib import Path
 
 from lxml import etree
 
-from ..geometry import Building, Wall, obstacle_names
-from ..spec import Material, Obstacle
+from ..geometry import Building, Wall, build_geometry, obstacle_names
+from ..spec import Material, Obstacle, Spec
 
 SDF_VERSIONS = ("1.6", "1.7", "1.8", "1.9")
 DEFAULT_SDF_VERSION = "1.6"     # Gazebo 9 and 11 (ROS Melodic and Noetic) read it
@@ -67,6 +67,11 @@ def _text(root) -> str:
 
 
 # ------------------------------------------------------------------------------------------------ public
+def spec_world_sdf(spec: Spec, sdf_version: str = DEFAULT_SDF_VERSION) -> str:
+    """The ``.world`` text of a spec, as ``worldgen build`` writes it: spec → geometry → SDF."""
+    return world_sdf(build_geometry(spec), sdf_version)
+
+
 def world_sdf(building: Building, sdf_version: str = DEFAULT_SDF_VERSION) -> str:
     """The ``.world`` text: ``<world name="default">`` holding the scene, the sun, an inline ground plane, ODE
     physics as in the TurtleBot3 worlds, gravity, the building model, one static model per obstacle and a GUI

@@ -24,12 +24,11 @@ def load_world(path: str, kind: str = "world", model_paths=()) -> tuple[Scene, d
 
     if kind != "spec":
         return read_world(path, model_paths=tuple(model_paths)), None
-    from ..geometry import build_geometry
-    from ..sdf.writer import world_sdf
+    from ..sdf.writer import spec_world_sdf
     from ..spec import load_spec
 
     spec = load_spec(path)
-    scene = read_world_text(world_sdf(build_geometry(spec)), source=spec.source or path,
+    scene = read_world_text(spec_world_sdf(spec), source=spec.source or path,
                             model_paths=tuple(model_paths))
     robot = None
     if spec.robot is not None:
