@@ -188,31 +188,19 @@ def _lidar(gazebo: list[ET.Element], links: tuple[str, ...]) -> LidarParams | No
     return None
 
 
-def link_frames(joints: tuple[Joint, ...], root: str) -> dict[str, tuple[tuple[float, float, float], tuple]]:
-    """Every link's pose in ``root``'s frame at zero joint positions: link → (xyz, 3×3 rotation rows)."""
-    frames = {root: ((0.0, 0.0, 0.0), ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0)))}
+def link_frames(joints: tuple[Joint, ...], root: str) -> dict[str, tuple[tuple[float, float, float], object]]:
+    """Every link's pose in ``root``'s frame at zero joint positions: link → (xyz, 3×3 rotation matrix)."""
+    from ..sdf.poses import IDENTITY, pose_matrix
+
+    frames = {root: IDENTITY}
     pending = list(joints)
     while pending:
-        progressed = False
-        for j in list(pending):
-            if j.parent in frames:
-                (px, py, pz), rot = frames[j.parent]
-                offset = [sum(rot[r][c] * j.xyz[c] for c in range(3)) for r in range(3)]
-                frames[j.child] = ((px + offset[0], py + offset[1], pz + offset[2]), _matmul(rot, _rpy(j.rpy)))
-                pending.remove(j)
-                progressed = True
-        if not progressed:
+        placed = [j for j in pending if j.parent in frames]
+        if not placed:
             break
-    return frames
+        for j in placed:
+            frames[j.child] = frames[j.parent] @ pose_matrix(*j.xyz, *j.rpy)
+            pending.remove(j)
+    return {link: (tuple(float(v) for v in t[:3, 3]), t[:3, :3]) for link, t in frames.items()}
 
 
-def _rpy(rpy: tuple[float, float, float]) -> tuple:
-    r, p, y = rpy
-    cr, sr, cp, sp, cy, sy = math.cos(r), math.sin(r), math.cos(p), math.sin(p), math.cos(y), math.sin(y)
-    return ((cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr),
-            (sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr),
-            (-sp, cp * sr, cp * cr))
-
-
-def _matmul(a: tuple, b: tuple) -> tuple:
-    return tuple(tuple(sum(a[i][k] * b[k][j] for k in range(3)) for j in range(3)) for i in range(3))
