@@ -74,6 +74,16 @@ def test_lone_cell_is_a_post_and_thick_block_has_no_vertical_walls():
     assert sorted(plan.walls) == [((0.5, 0.5), (3.5, 0.5)), ((0.5, 1.5), (3.5, 1.5))]
 
 
+def test_thick_blocks_become_walls_along_their_longer_side():
+    # a block 3 cells wide and 6 tall: 3 walls up it, not 6 across it
+    plan = plan_grid(["###"] * 6, 1.0)
+    assert sorted(plan.walls) == [((0.5, 0.5), (0.5, 5.5)), ((1.5, 0.5), (1.5, 5.5)), ((2.5, 0.5), (2.5, 5.5))]
+    # an L with arms two cells thick: two walls along each arm, the corner square in both
+    plan = plan_grid(["##....", "##....", "##....", "######", "######"], 1.0)
+    assert sorted(plan.walls) == sorted([((0.5, 0.5), (0.5, 4.5)), ((1.5, 0.5), (1.5, 4.5)),
+                                         ((0.5, 0.5), (5.5, 0.5)), ((0.5, 1.5), (5.5, 1.5))])
+
+
 def test_origin_shifts_everything_and_headings_set_yaw():
     for mark, yaw in (("R", 0.0), (">", 0.0), ("^", math.pi / 2), ("<", math.pi), ("v", -math.pi / 2)):
         plan = plan_grid(["###", f"#{mark}#", "###"], 1.0, origin=(10.0, -5.0))

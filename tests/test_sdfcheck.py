@@ -13,7 +13,7 @@ import pytest
 
 from worldgen.geometry import build_geometry
 from worldgen.sdf.writer import SDF_VERSIONS, model_sdf, world_sdf
-from worldgen.sdfcheck import sdformat_check
+from worldgen.sdfcheck import Message, messages, sdf_path, sdformat_check
 from worldgen.spec import Material, Obstacle, Opening, Room, Segment, Spec, WallStyle
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
@@ -80,3 +80,64 @@ def test_missing_library_means_none(monkeypatch, tmp_path):
     path = tmp_path / "w.world"
     path.write_text("<sdf version='1.6'/>")
     assert sdfcheck.sdformat_check(path) is None
+
+
+def test_stand_ins_for_gazebo_stock_models(check, tmp_path, monkeypatch):
+    monkeypatch.delenv("GAZEBO_MODEL_PATH", raising=False)
+    monkeypatch.delenv("SDF_PATH", raising=False)
+    path = tmp_path / "stock.world"
+    path.write_text("<sdf version='1.6'><world name='default'><include><uri>model://ground_plane</uri></include>"
+                    "<include><uri>model://sun</uri></include></world></sdf>")
+    valid, said = check(path, stubs=False)
+    assert not valid and "Unable to find uri[model://ground_plane]" in said and "model://sun" in said
+    assert check(path) == (True, "Valid.")
+
+
+def test_sdf_path_puts_the_stand_ins_last(tmp_path):
+    env = {"GAZEBO_MODEL_PATH": "/g1:/g2", "SDF_PATH": "/s1"}
+    assert sdf_path([tmp_path], Path("/stubs"), env=env) == f"{tmp_path}:/g1:/g2:/s1:/stubs"
+    assert sdf_path((), None, env={}) == ""
+
+
+# What libsdformat 12 printed for a box of two numbers (abridged; a colon put in the world name, as a quoted
+# name may hold one).
+ARITY = """Error [Param.cc:399] Unknown error. Unable to set value [1 2 ] for key[size]
+Error:   Could not find the 'robot' element in the xml file
+         at line 109 in ./urdf_parser/src/model.cpp
+Error Code 9: [/sdf/world[@name="w:1"]/model[@name="m"]/link[@name="l"]/collision[@name="c"]/geometry/box/size:\
+/tmp/a.world:L6]: Msg: Error reading element <size>
+Error Code 9: [/sdf/world[@name="w:1"]/model[@name="m"]/link[@name="l"]/collision[@name="c"]/geometry/box:\
+/tmp/a.world:L6]: Msg: Error reading element <box>
+Error Code 9: [/sdf/world[@name="w:1"]/model[@name="m"]:/tmp/a.world:L4]: Msg: Error reading element <model>
+Error Code 9: [/sdf/world[@name="w:1"]:/tmp/a.world:L3]: Msg: Error reading element <world>
+Error Code 9: Msg: Error reading element <sdf>
+Error Code 1: Msg: Unable to read file:/tmp/a.world"""
+
+DUPLICATE = """Warning [Model.cc:174] Non-unique name[l] detected 2 times in XML children of model with name[m].
+Error Code 2: Msg: link with name[l] already exists.
+Error Code 9: Msg: Failed to load a world."""
+
+SHARED = """Error: Non-unique names detected in <link name='l'>
+  <collision name='c'>
+  </collision>
+  <visual name='c'>
+  </visual>
+</link>"""
+
+
+def test_messages_keep_the_cause_where_the_cascade_starts():
+    assert messages(ARITY) == [Message("error", "Unknown error. Unable to set value [1 2 ] for key[size]",
+                                       "/tmp/a.world", 6,
+                                       "world[w:1]/model[m]/link[l]/collision[c]/geometry/box/size")]
+    assert messages(ARITY)[0].where == "/tmp/a.world:6 (world[w:1]/model[m]/link[l]/collision[c]/geometry/box/size)"
+
+
+def test_messages_place_a_duplicate_name_by_the_warning_about_it():
+    assert messages(DUPLICATE) == [Message("error", "link with name[l] already exists.", element="model m")]
+
+
+def test_messages_drop_an_xml_dump_and_keep_a_lone_generic_error():
+    assert messages(SHARED) == [Message("error", "Non-unique names detected in <link name='l'>")]
+    assert messages("Error Code 9: Msg: Failed to load a world.") == [
+        Message("error", "Failed to load a world.")]
+    assert messages("Valid.") == []

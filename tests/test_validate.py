@@ -381,3 +381,183 @@ def test_unreadable_files_are_failed_checks_not_tracebacks(tmp_path):
     failing = etree.parse(str(report)).getroot().xpath("//testcase[failure]")
     assert [(c.get("classname").rsplit("/", 1)[-1], c.get("name")) for c in failing] == [
         ("broken.world", "parse"), ("broken.launch", "launch"), ("bad.yaml", "parse")]
+
+
+# ------------------------------------------------------------------------------------- --sdformat (libsdformat)
+
+@pytest.fixture(scope="module")
+def libsdformat():
+    """libsdformat is there (skips without it, except under CI, where a missing library fails the run)."""
+    from worldgen.sdfcheck import sdformat_check
+
+    if sdformat_check(Path(__file__)) is None:
+        if os.environ.get("CI"):
+            pytest.fail("libsdformat (libsdformat12.so.12) is missing under CI: install libsdformat-dev")
+        pytest.skip("libsdformat is not installed")
+
+
+@pytest.fixture
+def no_model_path(monkeypatch):
+    """No GAZEBO_MODEL_PATH or SDF_PATH from the environment: only the stand-ins can provide stock models."""
+    monkeypatch.delenv("GAZEBO_MODEL_PATH", raising=False)
+    monkeypatch.delenv("SDF_PATH", raising=False)
+
+
+def room_world(path: Path, *, head: str = "", extra: str = "", links=None) -> Path:
+    """A 4 m room (one static model of wall links, 0.5 m high) after ``head`` (includes, a ground plane) and
+    before ``extra`` (more models); ``links`` replaces the walls' link texts."""
+    if links is None:
+        links = [box_link(f"Wall_{i}", a, b) for i, (a, b) in enumerate(room_walls(4.0))]
+    path.write_text(f"""<?xml version='1.0'?>
+<sdf version='1.6'>
+  <world name='default'>{head}
+    <model name='room'>
+      <static>1</static>{''.join(links)}
+    </model>{extra}
+  </world>
+</sdf>
+""", encoding="utf-8")
+    return path
+
+
+STOCK_INCLUDES = """
+    <include><uri>model://ground_plane</uri></include>
+    <include><uri>model://sun</uri></include>"""
+
+
+def sdformat_findings(result: dict) -> list[tuple[str, str]]:
+    return [(f["severity"], f["message"]) for f in result["findings"] if f["check"] == "sdformat"]
+
+
+@pytest.mark.skipif(not EXAMPLE_SPECS, reason="no examples/*.yaml yet")
+def test_our_examples_pass_libsdformat(libsdformat):
+    code, doc = as_json(*EXAMPLE_SPECS, "--sdformat", "--skip-sim", "-j", "2")
+    assert code == 0
+    for r in doc["results"]:
+        assert "sdformat" in r["checks"] and r["metrics"]["sdformat_valid"] is True, r["path"]
+        assert sdformat_findings(r) == []
+
+
+def test_wrong_box_arity_fails_libsdformat_at_its_line(libsdformat, tmp_path, no_model_path):
+    crate = """
+    <model name='crate'>
+      <static>1</static>
+      <pose>1 1 0 0 0 0</pose>
+      <link name='body'>
+        <collision name='body_collision'>
+          <geometry><box><size>1 2</size></box></geometry>
+        </collision>
+      </link>
+    </model>"""
+    world = room_world(tmp_path / "crate.world", head=STOCK_INCLUDES, extra=crate)
+    line = world.read_text().splitlines().index("          <geometry><box><size>1 2</size></box></geometry>") + 1
+    code, doc = as_json(world, "--skip-sim")
+    assert code == 0   # our own reader only warns (it reads the box as 1 × 1 × 1)
+    code, doc = as_json(world, "--skip-sim", "--sdformat")
+    [r] = doc["results"]
+    assert code == 1 and r["metrics"]["sdformat_valid"] is False
+    [error] = [f for f in r["findings"] if f["check"] == "sdformat"]   # one finding, not the cascade to <sdf>
+    assert error["severity"] == "error" and "[1 2 ]" in error["message"] and "key[size]" in error["message"]
+    assert error["where"] == (f"{world}:{line} "
+                              "(world[default]/model[crate]/link[body]/collision[body_collision]/geometry/box/size)")
+
+
+def test_duplicate_link_name_fails_libsdformat_naming_it(libsdformat, tmp_path, no_model_path):
+    walls = room_walls(4.0)
+    links = [box_link("Wall_0" if i == 1 else f"Wall_{i}", a, b) for i, (a, b) in enumerate(walls)]
+    world = room_world(tmp_path / "dup.world", head=STOCK_INCLUDES, links=links)
+    code, doc = as_json(world, "--skip-sim", "--sdformat")
+    [r] = doc["results"]
+    assert code == 1
+    [error] = [f for f in r["findings"] if f["check"] == "sdformat" and f["severity"] == "error"]
+    assert error["message"] == "link with name[Wall_0] already exists." and error["where"] == "model room"
+
+
+def test_class_room_passes_libsdformat(libsdformat, corpus, no_model_path):
+    code, doc = as_json(corpus / CLASS_WORLD, "--skip-sim", "--sdformat", "--spawn", "-5.5,-1")
+    [r] = doc["results"]
+    assert code == 0 and r["checks"] == ["parse", "sdformat", "enclosed", "spawn-clear"]
+    assert r["metrics"]["sdformat_valid"] is True and sdformat_findings(r) == []
+
+
+def test_stock_includes_pass_libsdformat_thanks_to_the_stand_ins(libsdformat, tmp_path, no_model_path):
+    world = room_world(tmp_path / "stock.world", head=STOCK_INCLUDES)
+    code, doc = as_json(world, "--skip-sim", "--sdformat")
+    [r] = doc["results"]
+    assert code == 0 and r["metrics"]["sdformat_valid"] is True and sdformat_findings(r) == []
+
+
+@pytest.mark.parametrize("how", ["--model-path", "GAZEBO_MODEL_PATH"])
+def test_libsdformat_checks_included_models_from_the_model_path(libsdformat, tmp_path, no_model_path,
+                                                                  monkeypatch, how):
+    crate = tmp_path / "models" / "crate"
+    crate.mkdir(parents=True)
+    (crate / "model.config").write_text("<model><name>crate</name><sdf version='1.6'>model.sdf</sdf></model>")
+    (crate / "model.sdf").write_text("""<sdf version='1.6'>
+  <model name='crate'>
+    <static>1</static>
+    <link name='body'>
+      <collision name='c'><geometry><box><size>0.4 0.4</size></box></geometry></collision>
+    </link>
+  </model>
+</sdf>
+""")
+    world = room_world(tmp_path / "crate.world", head=STOCK_INCLUDES,
+                       extra="\n    <include><uri>model://crate</uri><pose>1 1 0 0 0 0</pose></include>")
+    args = [world, "--skip-sim", "--sdformat"]
+    if how == "--model-path":
+        args += ["--model-path", tmp_path / "models"]
+    else:
+        monkeypatch.setenv("GAZEBO_MODEL_PATH", str(tmp_path / "models"))
+    code, doc = as_json(*args)
+    [error] = [f for f in doc["results"][0]["findings"] if f["check"] == "sdformat"]
+    assert code == 1 and "[0.4 0.4 ]" in error["message"]
+    assert error["where"].startswith(f"{(crate / 'model.sdf').resolve()}:5 (model[crate]/link[body]/collision[c]")
+
+
+def test_missing_include_is_a_libsdformat_warning(libsdformat, tmp_path, no_model_path):
+    nowhere = "\n    <include><uri>model://nowhere</uri></include>"
+    world = room_world(tmp_path / "w.world", head=STOCK_INCLUDES + nowhere)
+    code, doc = as_json(world, "--skip-sim", "--sdformat")
+    [r] = doc["results"]
+    assert code == 0 and r["metrics"]["sdformat_valid"] is False   # Gazebo Classic loads the rest all the same
+    assert sdformat_findings(r) == [("warning", "Unable to find uri[model://nowhere]")]
+
+
+def test_a_spec_is_checked_as_the_world_it_builds(libsdformat, tmp_path, monkeypatch):
+    import re
+
+    import worldgen.sdf.writer as writer
+
+    spec = tmp_path / "room.yaml"
+    spec.write_text((EXAMPLES / "enclosed_room.yaml").read_text(encoding="utf-8"), encoding="utf-8")
+    built = writer.spec_world_sdf
+    monkeypatch.setattr(writer, "spec_world_sdf",   # a wall box of two numbers
+                        lambda s: re.sub(r"<box>\s*<size>[^<]*</size>", "<box><size>1 2</size>", built(s), count=1))
+    [job] = plan([spec], Options(sdformat=True, skip_sim=True))
+    result = run_job(job, Options(sdformat=True, skip_sim=True))
+    [error] = [f for f in result.findings if f.check == "sdformat"]
+    assert error.severity == "error" and error.where.startswith(f"{tmp_path / 'room.world'}:")
+    assert "key[size]" in error.message and "/box/size)" in error.where
+    assert "worldgen_validate_" not in error.message + error.where   # the temporary file is not named
+
+
+def test_without_libsdformat_the_check_is_skipped_with_a_note(tmp_path, monkeypatch):
+    monkeypatch.setattr("worldgen.sdfcheck.sdformat_check", lambda *args, **kwargs: None)
+    world = write_world(tmp_path / "room.world", room_walls(4.0))
+    report = tmp_path / "junit.xml"
+    code, doc = as_json(world, "--skip-sim", "--sdformat", "--junit", report)
+    [r] = doc["results"]
+    assert code == 0 and "sdformat" not in r["checks"]
+    assert r["skipped"]["sdformat"] == "libsdformat is not installed"
+    assert [(f["severity"], f["message"]) for f in r["findings"] if f["check"] == "sdformat"] == [
+        ("info", "libsdformat is not installed; check skipped")]
+    [case] = etree.parse(str(report)).getroot().xpath("//testcase[@name='sdformat']")
+    assert case.find("skipped").get("message") == "libsdformat is not installed"
+
+
+def test_sdformat_is_skipped_with_the_rest_when_there_is_no_world(tmp_path):
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("name: bad\nrooms: [{name: r, rect: {center: [0, 0], size: [-5, 5]}}]\n", encoding="utf-8")
+    code, doc = as_json(bad, "--sdformat")
+    assert code == 1 and doc["results"][0]["skipped"]["sdformat"] == "the spec cannot be read"

@@ -2,7 +2,8 @@
 findings a student can act on, plus metrics a program can read.
 
 Geometric checks run here, in the calling process: ``parse`` (the reader's own findings), ``enclosed`` (see
-:mod:`worldgen.enclosure`) and ``spawn-clear``. The simulated checks — ``settle``, ``lidar``, ``spin`` and
+:mod:`worldgen.enclosure`) and ``spawn-clear``; so does the optional ``sdformat`` (libsdformat's own check, in a
+child process of its own). The simulated checks — ``settle``, ``lidar``, ``spin`` and
 ``stop-at-wall`` — run together in one child process per world (:mod:`worldgen.sim.validate_job`), which returns
 plain numbers; :func:`sim_findings` judges them.
 """
@@ -10,6 +11,7 @@ plain numbers; :func:`sim_findings` judges them.
 from __future__ import annotations
 
 import math
+import re
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 from functools import lru_cache
@@ -300,6 +302,57 @@ def check_spawn_clear(scene: Scene, spawn: tuple[float, float, float], body: Rob
             where=where, fix=f"keep the spawn at least {body.turn_radius:.2f} m from walls and obstacles")],
             metrics)
     return Outcome([], metrics)
+
+
+# ---------------------------------------------------------------------------------------------- sdformat
+
+SDFORMAT_ABSENT = "libsdformat is not installed"
+_MISSING_INCLUDE = re.compile(r"^Unable to find uri\[(?P<uri>.*)\]$")
+_SHARED_NAME = re.compile(r"^Non-unique names detected in <(?P<tag>\w+) name='(?P<name>[^']*)'")
+
+
+def check_sdformat(world_file: Path, model_paths=(), shown_as: str | None = None) -> Outcome | None:
+    """libsdformat's own check of ``world_file`` (:func:`worldgen.sdfcheck.sdformat_check`; ``model://`` through
+    ``model_paths``, GAZEBO_MODEL_PATH and stand-ins for Gazebo's ground_plane and sun), or None when the library
+    is not installed. Each distinct complaint is a finding with the file, line and element it names; the path of
+    ``world_file`` is written as ``shown_as`` (a spec's world is checked from a temporary file).
+
+    Two complaints are warnings, as Gazebo Classic loads such a world all the same: an include it cannot find
+    (the rest of the world loads; the parse check says the same) and names shared by different kinds of children
+    (a collision and a visual called alike, which libsdformat 12 refuses as SDF 1.7 does but Gazebo 11 accepts).
+    """
+    from .sdfcheck import messages, sdformat_check
+
+    checked = sdformat_check(world_file, model_paths=model_paths)
+    if checked is None:
+        return None
+    valid, text = checked
+    if shown_as is not None:
+        for form in dict.fromkeys((str(Path(world_file).resolve()), str(world_file))):
+            text = text.replace(form, shown_as)
+    findings = [_sdformat_finding(m) for m in messages(text)]
+    if not valid and not findings:
+        findings.append(Finding("sdformat", "error", "libsdformat finds the file invalid but does not say why",
+                                where=shown_as or str(world_file), fix=_SDFORMAT_FIX))
+    return Outcome(findings, {"sdformat_valid": valid})
+
+
+_SDFORMAT_FIX = "fix what libsdformat names: Gazebo loads worlds through this library"
+
+
+def _sdformat_finding(message) -> Finding:
+    missing = _MISSING_INCLUDE.match(message.text)
+    if missing:
+        return Finding("sdformat", "warning", message.text, where=message.where,
+                       fix="put the folder holding that model on --model-path or GAZEBO_MODEL_PATH; what the "
+                           "include holds was not checked" if missing.group("uri").startswith("model://") else
+                           "libsdformat does not download models: what the include holds was not checked")
+    shared = _SHARED_NAME.match(message.text)
+    if shared:
+        return Finding("sdformat", "warning", message.text, where=message.where or f"{shared['tag']} "
+                       f"{shared['name']}", fix="give each child of that element a name of its own (for example "
+                       "NAME_collision and NAME_visual): SDF 1.7 and libsdformat 12 require it, Gazebo 11 does not")
+    return Finding("sdformat", message.severity, message.text, where=message.where, fix=_SDFORMAT_FIX)
 
 
 # ------------------------------------------------------------------------------------------ simulated checks

@@ -5,10 +5,12 @@ heading of 0, π/2, π, −π/2). Row 0 is the top line; the grid's bottom-left 
 (0, 0)), so the cell in row ``r`` and column ``c`` of an ``H``-row grid has its centre at
 ``(ox + (c + ½)·cell, oy + (H − r − ½)·cell)``: the picture is the top-down view, +x to the right, +y up.
 
-Walls: each maximal horizontal run of two or more ``#`` becomes one wall along the row's centre, from the first
+Walls: a maximal horizontal run of two or more ``#`` can become one wall along the row's centre, from the first
 to the last cell centre, one cell thick. A wall's box reaches half its thickness beyond its end points (the way
-corners close), so the box covers the run's cells exactly. Vertical runs likewise, except that a vertical run
-whose cells all lie in horizontal runs already (a block two or more cells thick) adds nothing and is dropped.
+corners close), so the box covers the run's cells exactly. Vertical runs likewise. The runs are taken longest
+first (rows before columns on a tie), and a run whose cells all lie in runs taken already adds nothing and is
+dropped: a block two or more cells thick becomes a few walls along its longer side (a 3-cell-thick wall 200 cells
+long is 3 walls, not 200), which keeps a scanned map (:mod:`worldgen.occupancy`) to a sane number of boxes.
 A lone ``#`` (no ``#`` left, right, above or below it) has no run to belong to; it becomes a square post.
 """
 
@@ -77,18 +79,22 @@ def plan_grid(rows: Sequence[str], cell: float, origin: Point = (0.0, 0.0), *, s
     if not any(any(row) for row in is_wall):
         raise SpecError("the grid has no walls", path=source, line=line_of(0), hint=LEGEND)
 
-    walls: list[tuple[Point, Point]] = []
-    in_row_run = [[False] * width for _ in range(height)]
-    for r in range(height):
-        for c0, c1 in _runs(is_wall[r]):
-            walls.append((centre(r, c0), centre(r, c1)))
-            for c in range(c0, c1 + 1):
-                in_row_run[r][c] = True
-    for c in range(width):
-        column = [is_wall[r][c] for r in range(height)]
-        for r0, r1 in _runs(column):
-            if not all(in_row_run[r][c] for r in range(r0, r1 + 1)):
-                walls.append((centre(r1, c), centre(r0, c)))   # bottom to top
+    # (length, 0 for a row or 1 for a column, its index, first and last cell along it)
+    runs = [(c1 - c0, 0, r, c0, c1) for r in range(height) for c0, c1 in _runs(is_wall[r])]
+    runs += [(r1 - r0, 1, c, r0, r1) for c in range(width)
+             for r0, r1 in _runs([is_wall[r][c] for r in range(height)])]
+    covered = [[False] * width for _ in range(height)]
+    taken = []
+    for run in sorted(runs, key=lambda run: (-run[0], run[1:])):
+        _, vertical, k, a, b = run
+        cells = [(i, k) if vertical else (k, i) for i in range(a, b + 1)]
+        if all(covered[r][c] for r, c in cells):
+            continue
+        for r, c in cells:
+            covered[r][c] = True
+        taken.append(run[1:])
+    walls = [(centre(b, k), centre(a, k)) if vertical else (centre(k, a), centre(k, b))   # columns bottom to top
+             for vertical, k, a, b in sorted(taken)]                                     # rows first, top down
 
     posts = tuple((r, c, centre(r, c)) for r in range(height) for c in range(width)
                   if is_wall[r][c] and not _has_wall_neighbour(is_wall, r, c))

@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 
 from .findings import SEVERITIES, Finding
 
-CHECK_ORDER = ("parse", "launch", "package", "enclosed", "spawn-clear", "settle", "lidar", "spin", "stop-at-wall")
+CHECK_ORDER = ("parse", "sdformat", "launch", "package", "enclosed", "spawn-clear", "settle", "lidar", "spin", "stop-at-wall")
 
 
 @dataclass

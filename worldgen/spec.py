@@ -1,11 +1,12 @@
-"""The floorplan spec: a YAML/JSON (or ASCII-grid) file read into validated, immutable dataclasses.
+"""The floorplan spec: a YAML/JSON (or ASCII-grid, or ROS map_server map) file read into validated, immutable
+dataclasses.
 
 Coordinates are metres in the world frame. A room's ``rect`` or ``polygon`` gives the walls' centre-lines, as the
 Building Editor draws them; wall ``i`` runs from vertex ``i`` to vertex ``i+1``; an opening's ``offset`` is the
 distance along the wall's centre-line from vertex ``i`` to the opening's near edge.
 
 Parsing (``load_spec``) lives below the dataclasses; every error is a :class:`~worldgen.errors.SpecError` naming
-the file and line.
+the file and line. A map_server map (its own YAML, or a spec's ``map: FILE``) is read by :mod:`worldgen.occupancy`.
 """
 
 from __future__ import annotations
@@ -132,7 +133,7 @@ _NAME_RE = re.compile(r"[A-Za-z][A-Za-z0-9_]*\Z")
 _EXPONENT_NUMBER = re.compile(r"[-+]?(\d+(\.\d*)?|\.\d+)[eE][-+]?\d+\Z")
 _EPS = 1e-9
 
-TOP_KEYS = ("name", "walls", "rooms", "segments", "grid", "obstacles", "robot")
+TOP_KEYS = ("name", "walls", "rooms", "segments", "grid", "obstacles", "robot", "map")
 WALL_KEYS = ("thickness", "height", "material")
 ROOM_KEYS = ("name", "rect", "polygon", "walls", "openings")
 RECT_KEYS = ("center", "size")
@@ -180,8 +181,15 @@ def spec_beside(world_path: str | Path) -> tuple[Path, Spec] | None:
 
 def load_spec(path: str | Path) -> Spec:
     """Read and validate a floorplan spec: YAML or JSON, or a ``.txt`` ASCII grid (cell 0.5 m, named after the
-    file). Raises SpecError naming the file and line of the first problem."""
+    file), or a ROS map_server map's YAML (a YAML with an ``image`` key: its occupied pixels become walls, the world
+    is named after the file; see :mod:`worldgen.occupancy`). Raises SpecError naming the file and line of the first
+    problem."""
+    from .occupancy import IMAGE_SUFFIXES
+
     path = Path(path)
+    if path.suffix.lower() in IMAGE_SUFFIXES:
+        raise SpecError("is an image, not a spec", path=path,
+                        hint="for a ROS map, give the map's YAML (map.yaml, as map_saver writes it beside the image)")
     try:
         text = path.read_text(encoding="utf-8")
     except FileNotFoundError:
@@ -518,6 +526,10 @@ class _Reader:
         if not isinstance(root.value, dict):
             self.fail(f"a spec must be a block of keys (name:, walls:, rooms: …), not {_describe(root.value)}",
                       root.line, hint="start from the one `worldgen new NAME` writes")
+        from .occupancy import is_map_yaml, map_spec
+
+        if is_map_yaml(root.value):   # a ROS map_server map's own YAML
+            return map_spec(self, root)
         keys = self.mapping(root, "the spec", TOP_KEYS, required=("name",))
         name = self.name(keys["name"], "the spec's name")
         style = self.style(keys["walls"], "walls", WallStyle()) if "walls" in keys else WallStyle()
@@ -538,6 +550,12 @@ class _Reader:
             grid_segments, posts, grid_robot = self.grid(keys["grid"], style)
             segments += grid_segments
             obstacles += posts
+        if "map" in keys:
+            from .occupancy import spec_map_parts
+
+            map_segments, posts = spec_map_parts(self, keys["map"], style)
+            segments += map_segments
+            obstacles += posts
         names: dict[str, int | None] = {}
         for ob in obstacles:
             if ob.name is None:
@@ -552,7 +570,7 @@ class _Reader:
         if robot is None and grid_robot is not None:
             robot = RobotPose(at=grid_robot[0], yaw=grid_robot[1], line=keys["grid"].line)
         if not (rooms or segments or obstacles):
-            self.fail("the spec has no rooms, segments, grid or obstacles: there is nothing to build", root.line,
+            self.fail("the spec has no rooms, segments, grid, map or obstacles: there is nothing to build", root.line,
                       hint="add a room, e.g. rooms: [{name: main, rect: {center: [0, 0], size: [5, 5]}}]")
         return Spec(name=name, style=style, rooms=rooms, segments=tuple(segments), obstacles=tuple(obstacles),
                     robot=robot, source=self.source)

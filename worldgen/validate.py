@@ -6,7 +6,8 @@ robot model and spawn pose) or a catkin package folder (each of its launch files
 into :class:`Job` s, refusing bad input (missing paths, bad options) with an :class:`~worldgen.errors.InputError`
 before anything runs; :func:`run_job` validates one job into a :class:`~worldgen.report.Result`;
 :func:`validate` runs many on worker threads, each driving its own child processes for the simulator, and
-returns the results in input order.
+returns the results in input order. With ``sdformat`` set, libsdformat's own check runs too, in the same worker
+thread (the library in a child process of its own), so ``jobs`` run that in parallel as well.
 
 Spawn pose, first found: ``--spawn``; the launch file (``--launch``, or the input when it is one); the spec's
 ``robot`` entry (the input spec, or a spec of the same name beside the world); the world's origin. The report
@@ -22,8 +23,8 @@ from dataclasses import replace as dc_replace
 from pathlib import Path
 from typing import Callable, Sequence
 
-from .checks import (GEOMETRIC_CHECKS, SIM_CHECKS, check_enclosed, check_parse, check_spawn_clear, floor_under,
-                     robot_body, sim_findings)
+from .checks import (GEOMETRIC_CHECKS, SDFORMAT_ABSENT, SIM_CHECKS, check_enclosed, check_parse,
+                     check_spawn_clear, check_sdformat, floor_under, robot_body, sim_findings)
 from .errors import InputError, SpecError, WorldFileError
 from .findings import Finding
 from .report import Result
@@ -46,6 +47,7 @@ class Options:
     lidar_no_hit: str = "inf"
     skip_sim: bool = False
     sim_timeout: float = SIM_TIMEOUT
+    sdformat: bool = False                                 # also libsdformat's own check (slow on big worlds)
 
 
 @dataclass
@@ -309,7 +311,7 @@ def run_job(job: Job, options: Options) -> Result:
         return result
     if job.spec is not None:
         if job.floorplan is None:
-            return _skip_rest(result, "the spec cannot be read")
+            return _skip_rest(result, "the spec cannot be read", options)
         from .sdf.writer import spec_world_sdf
 
         try:
@@ -317,10 +319,10 @@ def run_job(job: Job, options: Options) -> Result:
         except SpecError as err:
             result.checks.append("parse")
             result.findings.append(_parse_error(err, job.spec))
-            return _skip_rest(result, "the spec cannot be built")
+            return _skip_rest(result, "the spec cannot be built", options)
         return _run_world(result, source, options)
     if job.world is None:
-        return _skip_rest(result, "no world to read")
+        return _skip_rest(result, "no world to read", options)
     return _run_world(result, WorldSource(job.world), options)
 
 
@@ -337,20 +339,30 @@ def _error_finding(check: str, err, path: Path, fix: str) -> Finding:
                    fix=err.hint or fix)
 
 
-def _skip_rest(result: Result, why: str) -> Result:
-    for check in (*GEOMETRIC_CHECKS, *SIM_CHECKS):
-        if check not in result.checks:
+def _skip_rest(result: Result, why: str, options: Options) -> Result:
+    for check in (*GEOMETRIC_CHECKS, *(("sdformat",) if options.sdformat else ()), *SIM_CHECKS):
+        if check not in result.checks and check not in result.skipped:
             result.skipped[check] = why
     return result
 
 
 def _run_world(result: Result, source: WorldSource, options: Options) -> Result:
+    """Read the world and check it, with a temporary folder of the job's own (only this user can read it)."""
+    with tempfile.TemporaryDirectory(prefix="worldgen_validate_") as tmp:
+        return _check_world(result, source, options, Path(tmp))
+
+
+def _check_world(result: Result, source: WorldSource, options: Options, tmp: Path) -> Result:
     result.checks.append("parse")
     try:
         scene = source.read(tuple(options.model_paths))
     except WorldFileError as err:
         result.findings.append(_parse_error(err, source.path))
-        return _skip_rest(result, "the world cannot be read")
+        scene = None
+    if options.sdformat:   # even when our reader gave up: libsdformat may say more about why
+        _sdformat(result, source, options, tmp)
+    if scene is None:
+        return _skip_rest(result, "the world cannot be read", options)
     outcome = check_parse(scene)
     result.findings += outcome.findings
     result.metrics.update(outcome.metrics)
@@ -366,35 +378,63 @@ def _run_world(result: Result, source: WorldSource, options: Options) -> Result:
         for name in SIM_CHECKS:
             result.skipped[name] = "--skip-sim"
         return result
-    _simulate(result, scene, options, ground, floor["floor"])
+    _simulate(result, scene, options, ground, floor["floor"], tmp)
     return result
 
 
-def _simulate(result: Result, scene, options: Options, ground: float, floor: str | None) -> None:
-    """The simulated checks on ``scene`` in one child process (the scene handed over pickled, in a temporary
-    folder only this user can read); a crash, a timeout or an error there becomes one error finding naming the
+def _sdformat(result: Result, source: WorldSource, options: Options, tmp: Path) -> None:
+    """libsdformat's check of the world (a spec's world text written to ``tmp`` first; a model folder's SDF
+    file), run here in the job's worker thread (the library itself runs in a child process)."""
+    shown = str(source.path)
+    if source.text is not None:
+        world_file = tmp / source.path.name
+        world_file.write_text(source.text, encoding="utf-8")
+    elif source.path.is_dir():
+        from .sdf.resolve import model_sdf_file
+
+        world_file = model_sdf_file(source.path)[0]
+        if world_file is None:
+            result.skipped["sdformat"] = "the model folder has no SDF file"
+            return
+        shown = str(world_file)
+    else:
+        world_file = source.path
+    outcome = check_sdformat(world_file, tuple(options.model_paths), shown_as=shown)
+    if outcome is None:
+        result.skipped["sdformat"] = SDFORMAT_ABSENT
+        result.findings.append(Finding("sdformat", "info", f"{SDFORMAT_ABSENT}; check skipped",
+                                       fix="install libsdformat 12 or newer (Debian 12, Ubuntu 22.04: apt install "
+                                           "libsdformat-dev), or leave out --sdformat"))
+        return
+    result.checks.append("sdformat")
+    result.findings += outcome.findings
+    result.metrics.update(outcome.metrics)
+
+
+def _simulate(result: Result, scene, options: Options, ground: float, floor: str | None, tmp: Path) -> None:
+    """The simulated checks on ``scene`` in one child process (the scene handed over pickled, in the job's
+    temporary folder ``tmp``); a crash, a timeout or an error there becomes one error finding naming the
     stage it happened in, and the checks it prevented are skipped."""
     import pickle
 
     from .errors import WorldgenError
     from .sim.process import SimCrashed, SimError, run_isolated
 
-    with tempfile.TemporaryDirectory(prefix="worldgen_validate_") as tmp:
-        stage_file, scene_file = Path(tmp) / "stage", Path(tmp) / "scene.pickle"
-        scene_file.write_bytes(pickle.dumps(scene, protocol=pickle.HIGHEST_PROTOCOL))
-        kwargs = {"scene_file": str(scene_file), "robot": result.robot, "spawn": list(result.spawn),
-                  "no_hit": options.lidar_no_hit, "stage_file": str(stage_file)}
-        try:
-            numbers = run_isolated(SIM_JOB, kwargs, options.sim_timeout)
-            failure = None
-        except SimCrashed as err:
-            what = (f"did not finish within {options.sim_timeout:g} s" if err.timed_out else
-                    f"crashed ({_exit_text(err.rc)})")
-            failure = f"pybullet {what} while {_stage(stage_file)}"
-        except SimError as err:
-            failure = f"the simulation failed while {_stage(stage_file)}: {err}"
-        except WorldgenError as err:
-            failure = f"the simulation could not run ({_stage(stage_file)}): {err}"
+    stage_file, scene_file = tmp / "stage", tmp / "scene.pickle"
+    scene_file.write_bytes(pickle.dumps(scene, protocol=pickle.HIGHEST_PROTOCOL))
+    kwargs = {"scene_file": str(scene_file), "robot": result.robot, "spawn": list(result.spawn),
+              "no_hit": options.lidar_no_hit, "stage_file": str(stage_file)}
+    try:
+        numbers = run_isolated(SIM_JOB, kwargs, options.sim_timeout)
+        failure = None
+    except SimCrashed as err:
+        what = (f"did not finish within {options.sim_timeout:g} s" if err.timed_out else
+                f"crashed ({_exit_text(err.rc)})")
+        failure = f"pybullet {what} while {_stage(stage_file)}"
+    except SimError as err:
+        failure = f"the simulation failed while {_stage(stage_file)}: {err}"
+    except WorldgenError as err:
+        failure = f"the simulation could not run ({_stage(stage_file)}): {err}"
     if failure is not None:
         result.checks.append("settle")
         result.findings.append(Finding("settle", "error", failure,

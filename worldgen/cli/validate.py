@@ -29,7 +29,10 @@ from . import EXIT_FAILED, EXIT_OK
 @click.option("--lidar-no-hit", type=click.Choice(["inf", "zero"]), default="inf", show_default=True,
               help="What a beam that hits nothing reads: inf as in Gazebo, 0 as the real LDS-01 driver.")
 @click.option("--skip-sim", is_flag=True, help="Only the geometric checks (parse, enclosed, spawn-clear).")
-def validate(paths, robot, spawn, launch_file, model_paths, fmt, junit, jobs, lidar_no_hit, skip_sim):
+@click.option("--sdformat", is_flag=True,
+              help="Also libsdformat's own check of each world, where the library is installed (slow and "
+                   "memory-hungry on big worlds).")
+def validate(paths, robot, spawn, launch_file, model_paths, fmt, junit, jobs, lidar_no_hit, skip_sim, sdformat):
     """Check worlds for a TurtleBot3 class: the room is closed around the spawn point, the robot spawns clear
     and settles, the LiDAR sees walls, it can spin in place and stop 0.5 m before a wall.
 
@@ -42,7 +45,8 @@ def validate(paths, robot, spawn, launch_file, model_paths, fmt, junit, jobs, li
     from ..validate import Options, plan, run_jobs
 
     options = Options(robot=robot, spawn=parse_spawn(spawn) if spawn is not None else None, launch=launch_file,
-                      model_paths=tuple(model_paths), lidar_no_hit=lidar_no_hit, skip_sim=skip_sim)
+                      model_paths=tuple(model_paths), lidar_no_hit=lidar_no_hit, skip_sim=skip_sim,
+                      sdformat=sdformat)
     planned = plan(paths, options)
     if sys.stderr.isatty() and len(planned) > 1:
         with click.progressbar(length=len(planned), label="validating", file=sys.stderr) as bar:
