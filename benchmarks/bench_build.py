@@ -66,14 +66,19 @@ def one_run(spec: Path, out: Path) -> tuple[float, int]:
     return float(seconds), int(rss)
 
 
+def timed_build(spec: Path, out: Path, runs: int) -> tuple[float, float]:
+    """Median wall time (s) and peak RSS (MiB) of ``worldgen build`` over ``runs`` fresh processes, after one
+    warm-up run (file cache, bytecode)."""
+    one_run(spec, out)
+    results = [one_run(spec, out) for _ in range(runs)]
+    return statistics.median(r[0] for r in results), max(r[1] for r in results) / 1024
+
+
 def measure(name: str, text: str, runs: int, tmp: Path) -> bool:
     spec = tmp / f"{name.replace(' ', '_')}.yaml"
     spec.write_text(text)
     out = tmp / name.replace(' ', '_')
-    one_run(spec, out)   # warm the file cache and the bytecode
-    results = [one_run(spec, out) for _ in range(runs)]
-    wall = statistics.median(r[0] for r in results)
-    rss = max(r[1] for r in results) / 1024
+    wall, rss = timed_build(spec, out, runs)
     (world,) = out.glob("*.world")
     target = TARGETS[name]
     ok = wall < target

@@ -15,14 +15,13 @@ from __future__ import annotations
 import argparse
 import random
 import shutil
-import statistics
 import sys
 import tempfile
 import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from bench_build import one_run   # noqa: E402  (the same child-process timing as the spec benchmark)
+from bench_build import timed_build   # noqa: E402  (the same child-process timing as the spec benchmark)
 
 FREE, UNKNOWN, WALL = 254, 205, 0
 TARGET = 1.5
@@ -86,10 +85,7 @@ def write_map(folder: Path, pixels: list[list[int]], origin: float) -> Path:
 
 def measure(label: str, source: Path, occupied: int, runs: int) -> bool:
     out = source.parent / "out"
-    one_run(source, out)   # warm the file cache and the bytecode
-    results = [one_run(source, out) for _ in range(runs)]
-    wall = statistics.median(r[0] for r in results)
-    rss = max(r[1] for r in results) / 1024
+    wall, rss = timed_build(source, out, runs)
     text = (out / "map.world").read_text()
     walls, posts = text.count('<link name="Wall_'), text.count('<model name="map_post_')
     ok = wall < TARGET
