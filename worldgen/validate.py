@@ -418,12 +418,14 @@ def _simulate(result: Result, scene, options: Options, ground: float, floor: str
     import pickle
 
     from .errors import WorldgenError
+    from .robots import robot_urdf
     from .sim.process import SimCrashed, SimError, run_isolated
 
     stage_file, scene_file = tmp / "stage", tmp / "scene.pickle"
     scene_file.write_bytes(pickle.dumps(scene, protocol=pickle.HIGHEST_PROTOCOL))
     kwargs = {"scene_file": str(scene_file), "robot": result.robot, "spawn": list(result.spawn),
-              "no_hit": options.lidar_no_hit, "stage_file": str(stage_file)}
+              "no_hit": options.lidar_no_hit, "stage_file": str(stage_file),
+              "urdf": robot_urdf(result.robot)}   # processed once here (robot_body did), not xacro'd per child
     try:
         numbers = run_isolated(SIM_JOB, kwargs, options.sim_timeout)
         failure = None

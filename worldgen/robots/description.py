@@ -10,6 +10,7 @@ pybullet only looks beside the URDF file for them.
 
 from __future__ import annotations
 
+import functools
 import os
 import re
 import threading
@@ -99,7 +100,15 @@ def robot_urdf(robot: str | Path = "burger", mappings: dict[str, str] | None = N
             raise InputError(f"cannot read the robot description: {err.message}", path=path, line=err.line,
                              hint=err.hint) from None
         return text
+    if mappings is None and robot in MODELS:
+        return _model_urdf(str(robot))
     return _process_xacro(path, dict(mappings or {}))
+
+
+@functools.lru_cache(maxsize=None)
+def _model_urdf(model: str) -> str:
+    """Our own description of ``model``, processed once per process (the files ship with worldgen)."""
+    return _process_xacro(robot_file(model), {})
 
 
 def _process_xacro(path: Path, mappings: dict[str, str]) -> str:

@@ -94,14 +94,14 @@ class Session:
     def __init__(self, scene: Scene | None = None, robot: str | Path = "burger", spawn=(0.0, 0.0, 0.0), *,
                  mappings: dict[str, str] | None = None, time_step: float = DEFAULT_TIME_STEP,
                  solver_iterations: int = DEFAULT_SOLVER_ITERATIONS, no_hit: str = "inf", noise: bool = True,
-                 seed: int = 0, add_ground: bool = True):
+                 seed: int = 0, add_ground: bool = True, urdf: str | None = None):
         self.time_step = time_step
         self.no_hit = no_hit
         self.rng = np.random.default_rng(seed) if noise else None
         self.touches = TouchLog()
         self._steps = 0
         source = robot_file(robot)
-        self.urdf = robot_urdf(robot, mappings)
+        self.urdf = urdf if urdf is not None else robot_urdf(robot, mappings)
         self.profile: RobotProfile = robot_profile(self.urdf, source=str(source))
         if self.profile.drive is None:
             raise InputError("the robot has no differential drive: no libgazebo_ros_diff_drive plugin and no "

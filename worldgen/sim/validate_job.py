@@ -25,16 +25,16 @@ FACE_TOLERANCE = math.radians(2)
 
 
 def simulate(scene_file: str, robot: str = "burger", spawn: list[float] = (0.0, 0.0, 0.0), no_hit: str = "inf",
-             stage_file: str | None = None) -> dict:
+             stage_file: str | None = None, urdf: str | None = None) -> dict:
     """The job in a child process: :func:`sim_numbers` on the scene pickled in ``scene_file`` (written by the
-    parent into its own temporary folder)."""
+    parent into its own temporary folder), with the robot's URDF text when the parent has processed it."""
     with open(scene_file, "rb") as handle:
         scene = pickle.load(handle)
-    return sim_numbers(scene, robot, spawn, no_hit, stage_file)
+    return sim_numbers(scene, robot, spawn, no_hit, stage_file, urdf)
 
 
 def sim_numbers(scene: Scene, robot: str = "burger", spawn=(0.0, 0.0, 0.0), no_hit: str = "inf",
-                stage_file: str | None = None) -> dict:
+                stage_file: str | None = None, urdf: str | None = None) -> dict:
     """Run the simulated checks on ``scene`` and return plain numbers (JSON-safe).
 
     Spawns ``robot`` at ``spawn`` (x, y, yaw), lets it settle, takes a 360-beam scan, spins in place, then drives
@@ -53,7 +53,7 @@ def sim_numbers(scene: Scene, robot: str = "burger", spawn=(0.0, 0.0, 0.0), no_h
     started = time.perf_counter()
     stage("loading the world and the robot")
     numbers: dict = {"ran": [], "failed": {}}
-    with Session(scene, robot, tuple(spawn), no_hit=no_hit) as session:
+    with Session(scene, robot, tuple(spawn), no_hit=no_hit, urdf=urdf) as session:
         stage("letting the robot settle")
         rest = settle(session, SETTLE_SECONDS)
         numbers["ran"].append("settle")
