@@ -71,7 +71,7 @@ def _body_from_urdf(urdf: str, profile, name: str) -> RobotBody:
     import numpy as np
     import shapely
 
-    from .robots.profile import link_frames
+    from .robots.profile import link_frames, origin_of
     from .sdf.poses import rpy_matrix
 
     frames = link_frames(profile.joints, profile.root_link)
@@ -85,9 +85,7 @@ def _body_from_urdf(urdf: str, profile, name: str) -> RobotBody:
             local = _geometry_points(collision.find("geometry"))
             if local is None:
                 continue
-            origin = collision.find("origin")
-            xyz = _floats(origin.get("xyz") if origin is not None else None)
-            rpy = _floats(origin.get("rpy") if origin is not None else None)
+            xyz, rpy = origin_of(collision)
             in_link = local @ rpy_matrix(*rpy).T + np.array(xyz)
             points.append(in_link @ link_rot.T + link_pos)
     if not points:   # no collision geometry at all: a TurtleBot3 burger's box stands in
@@ -104,22 +102,18 @@ def _body_from_urdf(urdf: str, profile, name: str) -> RobotBody:
         lidar_height=lidar_height)
 
 
-def _floats(text: str | None) -> tuple[float, float, float]:
-    values = [float(v) for v in (text or "").split()[:3]]
-    return tuple(values + [0.0] * (3 - len(values)))
-
-
 def _geometry_points(geometry):
     """Points whose hull bounds a URDF collision geometry, in its own frame (None for meshes and unknowns)."""
     import numpy as np
 
     from .enclosure import box_corners
+    from .robots.profile import floats
 
     if geometry is None or not len(geometry):
         return None
     shape = geometry[0]
     if shape.tag == "box":
-        return box_corners(_floats(shape.get("size")))
+        return box_corners(floats(shape.get("size"), 3))
     if shape.tag == "cylinder":
         r, half = float(shape.get("radius", 0)), float(shape.get("length", 0)) / 2
         a = np.linspace(0, 2 * math.pi, 16, endpoint=False)

@@ -27,7 +27,7 @@ from pathlib import Path
 from .errors import SpecError
 from .grid import plan_grid
 from .spec import (LIMIT, TOP_KEYS, Obstacle, Segment, Spec, WallStyle, _compose, _describe, _describe_sized, _m,
-                   _Node, _Reader, _suggest_name)
+                   _Node, _Reader, _suggest_name, did_you_mean)
 
 MAP_KEYS = ("image", "resolution", "origin", "negate", "occupied_thresh", "free_thresh", "mode")
 REQUIRED_KEYS = ("image", "resolution", "origin")
@@ -81,7 +81,7 @@ def read_map_yaml(reader: _Reader, root: _Node) -> MapFile:
         if key in TOP_KEYS:
             own = Path(reader.source or "map.yaml").name
             hint = f"'{key}' belongs in a spec: write one with name: …, map: {own} and {key}: …"
-        guess = _close(key, MAP_KEYS)
+        guess = did_you_mean(key, MAP_KEYS)
         reader.fail(f"unknown key '{key}' in the map_server map{guess}", line, hint=hint)
     for key in REQUIRED_KEYS:
         if key not in keys:
@@ -256,11 +256,3 @@ def spec_map_parts(reader: _Reader, node: _Node, base: WallStyle) -> tuple[list[
 
 def _what(value: object) -> str:
     return _describe_sized(value) if isinstance(value, list) else _describe(value)
-
-
-def _close(key: str, keys: tuple[str, ...]) -> str:
-    import difflib
-
-    close = difflib.get_close_matches(key, keys, n=1, cutoff=0.6)
-    return f"; did you mean '{close[0]}'?" if close else ""
-

@@ -267,6 +267,12 @@ def _describe_sized(value: object) -> str:
     return f"a list of {len(value)} number{'' if len(value) == 1 else 's'}"
 
 
+def did_you_mean(word: str, choices, cutoff: float = 0.6) -> str:
+    """``"; did you mean 'X'?"`` for the choice nearest ``word`` (difflib), or "" when none is near."""
+    close = difflib.get_close_matches(word, choices, n=1, cutoff=cutoff)
+    return f"; did you mean '{close[0]}'?" if close else ""
+
+
 def _m(x: float) -> str:
     """A length for a message: up to 4 decimals, no trailing zeros."""
     return f"{round(x, 4):g}"
@@ -377,9 +383,7 @@ class _Reader:
                       hint=f"{what} takes: {', '.join(keys)}")
         for key in node.value:
             if key not in keys:
-                close = difflib.get_close_matches(key, keys, n=1, cutoff=0.6)
-                guess = f"; did you mean '{close[0]}'?" if close else ""
-                self.fail(f"unknown key '{key}' in {what}{guess}", node.key_lines[key],
+                self.fail(f"unknown key '{key}' in {what}{did_you_mean(key, keys)}", node.key_lines[key],
                           hint=f"{what} takes: {', '.join(keys)}")
         for key in required:
             if key not in node.value:
@@ -456,8 +460,7 @@ class _Reader:
         value = node.value
         if isinstance(value, str) and value in choices:
             return value
-        close = difflib.get_close_matches(str(value).lower(), choices, n=1, cutoff=0.5)
-        guess = f"; did you mean '{close[0]}'?" if close else ""
+        guess = did_you_mean(str(value).lower(), choices, cutoff=0.5)
         shown = f"'{value}'" if isinstance(value, str) else _describe(value)
         self.fail(f"{what} must be one of {', '.join(choices)}, not {shown}{guess}", node.line,
                   hint=f"write one of: {', '.join(choices)}")

@@ -80,10 +80,20 @@ class RobotProfile:
     base_frame: str = "base_footprint"
 
 
-def _floats(text: str | None, n: int, default: float = 0.0) -> tuple[float, ...]:
+def floats(text: str | None, n: int, default: float = 0.0) -> tuple[float, ...]:
+    """The first ``n`` numbers of a URDF attribute (``"0 0.08 0.023"``), padded with ``default``; ValueError for
+    a value that is not a number."""
     parts = (text or "").split()
     values = [float(p) for p in parts[:n]]
     return tuple(values + [default] * (n - len(values)))
+
+
+def origin_of(elem: ET.Element) -> tuple[tuple[float, ...], tuple[float, ...]]:
+    """The ``xyz`` and ``rpy`` of an element's ``<origin>`` (zeros where absent), as URDF reads them."""
+    origin = elem.find("origin")
+    if origin is None:
+        return (0.0, 0.0, 0.0), (0.0, 0.0, 0.0)
+    return floats(origin.get("xyz"), 3), floats(origin.get("rpy"), 3)
 
 
 def _num(elem: ET.Element | None, path: str, default: float) -> float:
@@ -125,12 +135,11 @@ def robot_profile(urdf: str, source: str | None = None) -> RobotProfile:
 
 
 def _joint(elem: ET.Element) -> Joint:
-    origin = elem.find("origin")
+    xyz, rpy = origin_of(elem)
     return Joint(name=elem.get("name", ""), type=elem.get("type", ""),
                  parent=elem.find("parent").get("link", "") if elem.find("parent") is not None else "",
                  child=elem.find("child").get("link", "") if elem.find("child") is not None else "",
-                 xyz=_floats(origin.get("xyz") if origin is not None else None, 3),
-                 rpy=_floats(origin.get("rpy") if origin is not None else None, 3))
+                 xyz=xyz, rpy=rpy)
 
 
 def _drive(root: ET.Element, joints: tuple[Joint, ...], plugin: ET.Element | None, base: str) -> DriveParams | None:
@@ -182,7 +191,7 @@ def _lidar(gazebo: list[ET.Element], links: tuple[str, ...]) -> LidarParams | No
                     resolution=_num(rng, "resolution", 0.0),
                     noise_mean=_num(noise, "mean", 0.0), noise_stddev=_num(noise, "stddev", 0.0),
                     update_rate=_num(sensor, "update_rate", 0.0),
-                    pose=_floats(sensor.findtext("pose"), 6))
+                    pose=floats(sensor.findtext("pose"), 6))
     if "base_scan" in links:
         return LidarParams(link="base_scan", from_sensor=False, **LDS01)
     return None
