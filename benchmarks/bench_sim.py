@@ -16,7 +16,7 @@ from pathlib import Path
 REPO = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(REPO))
 
-from worldgen.scene import Scene, Shape  # noqa: E402
+from worldgen.core.scene import Scene, Shape  # noqa: E402
 
 CORPUS = REPO.parent / "shared" / "corpus"
 CLASS_ROOM = (CORPUS / "worlds" /
@@ -79,7 +79,7 @@ def bench_session(name: str, scene: Scene, spawn, repeats: int = 3) -> None:
 def bench_exercise(name: str, world, spawn) -> None:
     """A complete spin + stop-at-wall (kp 0.5), in-process and through run_isolated (process start included)."""
     from worldgen.sim.behaviours import settle, spin, stop_at_wall
-    from worldgen.sim.process import run_isolated
+    from worldgen.check.sources import load_scene, run_on_scene
     from worldgen.sim.session import Session
 
     scene = scene_of(world)
@@ -95,9 +95,9 @@ def bench_exercise(name: str, world, spawn) -> None:
           f"(drift {turn.max_drift * 1000:.0f} mm; stopped at {final}, contacts {len(stop.contacts)})")
     if isinstance(world, str):
         t0 = time.perf_counter()
-        run_isolated("worldgen.sim.exercise:drive_exercise",
-                     {"world": world, "behaviour": "stop-at-wall", "spawn": list(spawn),
-                      "model_paths": [str(CORPUS / "gazebo_models")]})
+        read, _ = load_scene(world, model_paths=[str(CORPUS / "gazebo_models")])
+        run_on_scene("worldgen.sim.exercise:drive_exercise", read,
+                     {"world": world, "behaviour": "stop-at-wall", "spawn": list(spawn)}, 120.0)
         print(f"  worldgen drive's job (read world + stop-at-wall, isolated process): "
               f"{time.perf_counter() - t0:.2f} s wall")
 

@@ -68,7 +68,7 @@ def sim_ratio(world: Path, spawn) -> float:
     validate reads once and hands over."""
     sys.path.insert(0, str(REPO))
     from worldgen.sdf.reader import read_world
-    from worldgen.sim.validate_job import sim_numbers
+    from worldgen.check.sim_job import sim_numbers
 
     numbers = sim_numbers(read_world(world), spawn=spawn)
     return numbers["sim_seconds"] / numbers["wall_seconds"]

@@ -7,8 +7,8 @@ import pytest
 from click.testing import CliRunner
 
 from worldgen.cli import main
-from worldgen.errors import SpecError
-from worldgen.spec import load_spec, parse_spec
+from worldgen.core.errors import SpecError
+from worldgen.spec.load import load_spec, parse_spec
 
 ROOM = "name: t\nrooms:\n  - name: main\n    rect: {center: [0, 0], size: [5, 5]}\n"   # lines 1-4
 OPENINGS = ROOM + "    openings:\n"                                                          # line 5

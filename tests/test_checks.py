@@ -7,10 +7,10 @@ import math
 import pytest
 
 from test_enclosure import square_room, wall
-from worldgen.checks import (check_enclosed, check_parse, check_spawn_clear, floor_under, robot_body,
+from worldgen.check.checks import (check_enclosed, check_parse, check_spawn_clear, floor_under, robot_body,
                              sim_findings)
-from worldgen.findings import Finding
-from worldgen.scene import Scene, Shape
+from worldgen.core.findings import Finding
+from worldgen.core.scene import Scene, Shape
 
 BURGER = robot_body("burger")
 WAFFLE = robot_body("waffle")

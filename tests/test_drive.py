@@ -11,7 +11,7 @@ from click.testing import CliRunner
 
 from worldgen.cli import main
 from worldgen.cli.drive import gain_sets
-from worldgen.errors import InputError
+from worldgen.core.errors import InputError
 from worldgen.sim.process import SimCrashed, SimError, run_isolated
 
 TARGETS = '''
@@ -23,7 +23,7 @@ def double(x):
     return {"x": 2 * x, "far": float("inf")}
 
 def bad_input():
-    from worldgen.errors import InputError
+    from worldgen.core.errors import InputError
     raise InputError("unknown thing", path="a.world", line=3, hint="fix it")
 
 def bug():

@@ -11,9 +11,9 @@ from click.testing import CliRunner
 
 from conftest import EXAMPLES
 from worldgen.cli import main
-from worldgen.enclosure import enclosure
+from worldgen.geometry.enclosure import enclosure
 from worldgen.sdf.reader import read_world
-from worldgen.spec import load_spec
+from worldgen.spec.load import load_spec
 
 LIDAR_HEIGHT = 0.17   # m: where a TurtleBot3's LDS-01 scans
 

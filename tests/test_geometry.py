@@ -12,9 +12,9 @@ import shapely.ops
 from shapely.geometry import LineString, Point, Polygon
 from shapely.ops import unary_union
 
-from worldgen.errors import SpecError
-from worldgen.geometry import JOIN_TOLERANCE, build_geometry
-from worldgen.spec import Material, Obstacle, Opening, Room, Segment, Spec, WallStyle
+from worldgen.core.errors import SpecError
+from worldgen.geometry.building import JOIN_TOLERANCE, build_geometry
+from worldgen.spec.load import Material, Obstacle, Opening, Room, Segment, Spec, WallStyle
 
 STYLE = WallStyle()
 T = STYLE.thickness

@@ -7,9 +7,9 @@ import math
 import pytest
 import shapely
 
-from worldgen.errors import SpecError
-from worldgen.grid import plan_grid
-from worldgen.spec import parse_spec
+from worldgen.core.errors import SpecError
+from worldgen.spec.grid import plan_grid
+from worldgen.spec.load import parse_spec
 
 MAZE3 = ["#####",
          "#R..#",
@@ -154,7 +154,7 @@ def test_grid_error_lines_point_into_the_block():
 
 
 def test_txt_grid_file(tmp_path):
-    from worldgen.spec import load_spec
+    from worldgen.spec.load import load_spec
 
     path = tmp_path / "small-maze.txt"
     path.write_text("####\n#^ #\n####\n")

@@ -11,11 +11,12 @@ from click.testing import CliRunner
 from lxml import etree
 
 from worldgen.cli import main
-from worldgen.errors import InputError, WorldFileError
-from worldgen.launch import format_number, launch_xml, parse_node
-from worldgen.launch_reader import read_launch
-from worldgen.spawn import parse_spawn
-from worldgen.spawn import spawn_problem, world_rooms
+from worldgen.core.errors import InputError, WorldFileError
+from worldgen.core.numbers import format_number
+from worldgen.ros.launch import launch_xml, parse_node
+from worldgen.ros.launch_reader import read_launch
+from worldgen.core.spawnpose import parse_spawn
+from worldgen.geometry.placement import spawn_problem, world_rooms
 
 ENCLOSED = "worlds/Intro-Robotics-UChicago-Spring-2022__warmup_project__worlds_turtlebot3_in_enclosed_room.world"
 CLASS_LAUNCH = "launch/Intro-Robotics-UChicago-Spring-2022__warmup_project__launch_turtlebot3_in_room.launch"
@@ -97,7 +98,7 @@ def test_numbers_nodes_and_spawn_values():
 def test_default_spawn_is_the_middle_of_the_class_room(corpus, tmp_path):
     """The class's saved world: the room's walls, moved by the <state> block, are centred on (-4.907, -1.411);
     the deepest free point of a square room is its centre."""
-    from worldgen.spawn import spawn_for_world
+    from worldgen.ros.spawn import spawn_for_world
 
     world = tmp_path / "room.world"
     shutil.copy(corpus / ENCLOSED, world)
@@ -118,9 +119,9 @@ def test_default_spawn_is_the_middle_of_the_class_room(corpus, tmp_path):
 def test_a_spawn_the_launch_writer_accepts_leaves_room_to_turn(model):
     """The spawn check's radius holds the robot's collision shapes (what validate's spawn-clear sweeps): a
     burger 0.115 m from a wall would put its base box's back corners (0.124 m out) into it when turned."""
-    from worldgen.checks import robot_body
-    from worldgen.scene import Scene, Shape
-    from worldgen.spawn import robot_radius
+    from worldgen.check.checks import robot_body
+    from worldgen.core.scene import Scene, Shape
+    from worldgen.geometry.placement import robot_radius
 
     reach = robot_body(model).turn_radius
     assert robot_radius(model) >= reach
@@ -135,7 +136,7 @@ def test_spawn_comes_from_the_spec_beside_the_world(corpus, tmp_path):
     shutil.copy(corpus / ENCLOSED, world)
     (tmp_path / "room.yaml").write_text("name: room\nrooms:\n  - name: a\n    rect: {center: [0, 0], size: [5, 5]}\n"
                                         "robot: {model: burger, at: [-5.5, -1.0], yaw: 1.5}\n")
-    from worldgen.spawn import spawn_for_world
+    from worldgen.ros.spawn import spawn_for_world
 
     assert spawn_for_world(world) == ((-5.5, -1.0, 0.0, 1.5), "spec")
     (tmp_path / "room.yaml").write_text((tmp_path / "room.yaml").read_text().replace("-5.5", "5.5"))
@@ -146,7 +147,7 @@ def test_spawn_comes_from_the_spec_beside_the_world(corpus, tmp_path):
 def test_every_default_spawn_in_the_corpus_is_free(corpus):
     """For every corpus world with something at robot height, the chosen point is one the robot may use, and
     in a world with a closed room it is in that room."""
-    from worldgen.spawn import deepest_point
+    from worldgen.geometry.placement import deepest_point
     from worldgen.sdf.reader import read_world
 
     checked = 0

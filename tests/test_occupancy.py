@@ -15,10 +15,10 @@ from click.testing import CliRunner
 
 from conftest import EXAMPLES
 from worldgen.cli import main
-from worldgen.enclosure import enclosure
-from worldgen.errors import SpecError
+from worldgen.geometry.enclosure import enclosure
+from worldgen.core.errors import SpecError
 from worldgen.sdf.reader import read_world
-from worldgen.spec import load_spec
+from worldgen.spec.load import load_spec
 
 MAP_DIR = EXAMPLES / "map"
 FREE, UNKNOWN, WALL = 254, 205, 0   # the grey levels map_saver writes
@@ -211,7 +211,7 @@ def test_crop_origin_and_post_names(tmp_path):
 
 
 def test_example_map_yaml_as_read():
-    from worldgen.occupancy import MapFile, load_map_yaml
+    from worldgen.spec.maps import MapFile, load_map_yaml
 
     assert load_map_yaml(MAP_DIR / "map.yaml") == MapFile(
         path=MAP_DIR / "map.yaml", image=MAP_DIR / "map.pgm", resolution=0.05, origin=(-1.5, -2.5), negate=False,
@@ -344,7 +344,7 @@ def test_example_builds_closed_around_the_robot(tmp_path, name):
 def test_example_validates(tmp_path):
     import json
 
-    from worldgen.sdfcheck import sdformat_check
+    from worldgen.check.sdformat import sdformat_check
 
     result = CliRunner().invoke(main, ["validate", str(MAP_DIR / "flat.yaml"), "--format", "json"])
     assert result.exit_code == 0, result.output

@@ -15,7 +15,7 @@ from matplotlib.image import imread
 from worldgen.cli import main
 from worldgen.preview import (DOOR_COLOUR, OBSTACLE_COLOUR, ROBOT_COLOUR, WALL_COLOUR, WINDOW_COLOUR, Picture,
                               Spawn, figure, picture, render)
-from worldgen.scene import Scene
+from worldgen.core.scene import Scene
 
 WORLD = """\
 <?xml version="1.0"?>

@@ -18,8 +18,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from worldgen.errors import WorldFileError
-from worldgen.sdf import poses
+from worldgen.core.errors import WorldFileError
+from worldgen.core import poses
 from worldgen.sdf.reader import read_world
 
 

@@ -8,7 +8,7 @@ import xml.etree.ElementTree as ET
 
 import pytest
 
-from worldgen.errors import InputError
+from worldgen.core.errors import InputError
 from worldgen.robots import absolute_mesh_paths, find_package, robot_urdf
 from worldgen.robots.profile import link_frames, robot_profile
 

@@ -11,10 +11,10 @@ from pathlib import Path
 
 import pytest
 
-from worldgen.geometry import build_geometry
+from worldgen.geometry.building import build_geometry
 from worldgen.sdf.writer import SDF_VERSIONS, model_sdf, world_sdf
-from worldgen.sdfcheck import Message, messages, sdf_path, sdformat_check
-from worldgen.spec import Material, Obstacle, Opening, Room, Segment, Spec, WallStyle
+from worldgen.check.sdformat import Message, messages, sdf_path, sdformat_check
+from worldgen.spec.load import Material, Obstacle, Opening, Room, Segment, Spec, WallStyle
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
@@ -64,7 +64,7 @@ def test_broken_file_is_reported(check, tmp_path):
 
 @pytest.mark.skipif(not list(EXAMPLES.glob("*.yaml")), reason="no examples/ in this checkout")
 def test_examples_build_into_valid_worlds(check, tmp_path):
-    from worldgen.spec import load_spec
+    from worldgen.spec.load import load_spec
 
     for spec_path in sorted(EXAMPLES.glob("*.yaml")):
         path = tmp_path / f"{spec_path.stem}.world"
@@ -74,7 +74,7 @@ def test_examples_build_into_valid_worlds(check, tmp_path):
 
 
 def test_missing_library_means_none(monkeypatch, tmp_path):
-    import worldgen.sdfcheck as sdfcheck
+    import worldgen.check.sdformat as sdfcheck
 
     monkeypatch.setattr(sdfcheck, "_CHILD", sdfcheck._CHILD.replace("libsdformat", "libno_such_sdformat"))
     path = tmp_path / "w.world"

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from worldgen.robots.profile import DriveParams
-from worldgen.scene import Scene, Shape
+from worldgen.core.scene import Scene, Shape
 from worldgen.sim.behaviours import settle, spin, stop_at_wall
 from worldgen.sim.drive import DiffDrive
 from worldgen.sim.lidar import front_distance

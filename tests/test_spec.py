@@ -9,8 +9,8 @@ import yaml
 from click.testing import CliRunner
 
 from worldgen.cli import main
-from worldgen.errors import SpecError
-from worldgen.spec import (DEFAULT_HEIGHT, DEFAULT_MATERIAL, DEFAULT_THICKNESS, Material, load_spec, parse_spec,
+from worldgen.core.errors import SpecError
+from worldgen.spec.load import (DEFAULT_HEIGHT, DEFAULT_MATERIAL, DEFAULT_THICKNESS, Material, load_spec, parse_spec,
                            starter_spec)
 
 DESIGN_EXAMPLE = """\

@@ -15,8 +15,8 @@ from lxml import etree
 
 from conftest import EXAMPLES
 from worldgen.cli import main
-from worldgen.spawn import parse_spawn
-from worldgen.validate import Options, plan, run_job
+from worldgen.core.spawnpose import parse_spawn
+from worldgen.check.validate import Options, plan, run_job
 
 CLASS_WORLD = "worlds/Intro-Robotics-UChicago-Spring-2022__warmup_project__worlds_turtlebot3_in_enclosed_room.world"
 CLASS_LAUNCH = "launch/Intro-Robotics-UChicago-Spring-2022__warmup_project__launch_turtlebot3_in_room.launch"
@@ -286,7 +286,7 @@ def test_crashed_simulator_becomes_a_finding(tmp_path, monkeypatch):
     helper.write_text("import os\n\ndef simulate(stage_file=None, **kwargs):\n"
                       "    open(stage_file, 'w').write('spinning in place')\n    os.abort()\n")
     monkeypatch.setenv("PYTHONPATH", str(tmp_path))
-    monkeypatch.setattr("worldgen.validate.SIM_JOB", "crashing_job:simulate")
+    monkeypatch.setattr("worldgen.check.validate.SIM_JOB", "crashing_job:simulate")
     world = write_world(tmp_path / "room.world", room_walls(4.0))
     [job] = plan([world], Options())
     result = run_job(job, Options())
@@ -388,7 +388,7 @@ def test_unreadable_files_are_failed_checks_not_tracebacks(tmp_path):
 @pytest.fixture(scope="module")
 def libsdformat():
     """libsdformat is there (skips without it, except under CI, where a missing library fails the run)."""
-    from worldgen.sdfcheck import sdformat_check
+    from worldgen.check.sdformat import sdformat_check
 
     if sdformat_check(Path(__file__)) is None:
         if os.environ.get("CI"):
@@ -543,7 +543,7 @@ def test_a_spec_is_checked_as_the_world_it_builds(libsdformat, tmp_path, monkeyp
 
 
 def test_without_libsdformat_the_check_is_skipped_with_a_note(tmp_path, monkeypatch):
-    monkeypatch.setattr("worldgen.sdfcheck.sdformat_check", lambda *args, **kwargs: None)
+    monkeypatch.setattr("worldgen.check.sdformat.sdformat_check", lambda *args, **kwargs: None)
     world = write_world(tmp_path / "room.world", room_walls(4.0))
     report = tmp_path / "junit.xml"
     code, doc = as_json(world, "--skip-sim", "--sdformat", "--junit", report)

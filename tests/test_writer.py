@@ -16,9 +16,9 @@ from shapely.geometry import LineString, Polygon
 from shapely.ops import unary_union
 
 from worldgen.cli import main
-from worldgen.geometry import build_geometry
+from worldgen.geometry.building import build_geometry
 from worldgen.sdf.writer import SDF_VERSIONS, fmt, model_config, model_sdf, planned_files, world_sdf
-from worldgen.spec import Material, Obstacle, Opening, Room, Spec, WallStyle
+from worldgen.spec.load import Material, Obstacle, Opening, Room, Spec, WallStyle
 
 STYLE = WallStyle()
 T = STYLE.thickness

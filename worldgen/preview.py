@@ -1,8 +1,8 @@
 """Top-down pictures of a world: what a TurtleBot3 meets at its own height, drawn to scale.
 
-A world file is read into a :class:`~worldgen.scene.Scene`; a spec goes spec → geometry → SDF text → the same
+A world file is read into a :class:`~worldgen.core.scene.Scene`; a spec goes spec → geometry → SDF text → the same
 reader, so the picture shows what the written world holds, not what the spec meant. Every shape is cut through
-the robot's height band (:data:`worldgen.spawn.SLICE_Z`, by :func:`worldgen.enclosure.footprints_between`):
+the robot's height band (:data:`worldgen.geometry.placement.SLICE_Z`, by :func:`worldgen.geometry.enclosure.footprints_between`):
 walls and obstacles are filled, lintels over doors and anything else above the robot are left out, so a doorway
 shows as a gap. A spec adds its openings (doors and windows, from the geometry) and its spawn pose.
 
@@ -17,9 +17,9 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Sequence
 
-from .grid import POST_PREFIX
-from .scene import Scene
-from .spec import SPEC_SUFFIXES, Spec, load_spec
+from .spec.grid import POST_PREFIX
+from .core.scene import Scene
+from .spec.load import SPEC_SUFFIXES, Spec, load_spec
 
 FIGSIZE = (8.0, 8.0)   # inches
 DPI = 100              # so a picture is 800 × 800 pixels
@@ -72,7 +72,7 @@ def is_spec_path(path: str | Path) -> bool:
 
 def spec_picture(spec: Spec) -> Picture:
     """A spec's picture: its geometry written as SDF and read back, plus its openings and spawn pose."""
-    from .geometry import build_geometry
+    from .geometry.building import build_geometry
     from .sdf.reader import read_world_text
     from .sdf.writer import world_sdf
 
@@ -140,8 +140,8 @@ def figure(pic: Picture, rays: Sequence[Ray] | None = None):
     from matplotlib.collections import LineCollection
     from matplotlib.figure import Figure
 
-    from .enclosure import footprints_between
-    from .spawn import ROBOT_RADIUS, SLICE_Z
+    from .geometry.enclosure import footprints_between
+    from .geometry.placement import ROBOT_RADIUS, SLICE_Z
 
     with matplotlib.rc_context(_default_style()):
         fig = Figure(figsize=FIGSIZE, dpi=DPI)

@@ -12,9 +12,7 @@ import sys
 import click
 
 from .. import __version__
-from ..errors import WorldgenError
-
-EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT = 0, 1, 2
+from ..core.errors import EXIT_BAD_INPUT, WorldgenError
 
 
 class _Group(click.Group):

@@ -1,6 +1,6 @@
 """``worldgen build``: a floorplan spec becomes a Gazebo world (and, on request, a Building-Editor model folder).
 
-A thin layer over :func:`worldgen.spec.load_spec`, :func:`worldgen.geometry.build_geometry` and
+A thin layer over :func:`worldgen.spec.load.load_spec`, :func:`worldgen.geometry.building.build_geometry` and
 :func:`worldgen.sdf.writer.planned_files`. The command gathers every output in one ``{path: text}`` mapping and
 writes it all-or-nothing, so further outputs (a package's worlds/ and launch/ folders, say) are one more
 ``files.update(...)`` before the write. A plain build imports only lxml and PyYAML, to keep it fast; with
@@ -33,11 +33,11 @@ WORLD_SUFFIXES = (".world", ".sdf")
 def build_command(spec: Path, out_dir: Path, sdf_version: str, model_dir: bool, package_dir: Path | None,
                   force: bool) -> None:
     """Build the Gazebo world of the floorplan SPEC (YAML/JSON, or an ASCII grid .txt) as OUT/NAME.world."""
-    from ..errors import InputError
-    from ..fsio import write_files
-    from ..geometry import build_geometry
+    from ..core.errors import InputError
+    from ..core.fsio import write_files
+    from ..geometry.building import build_geometry
     from ..sdf.writer import planned_files
-    from ..spec import load_spec
+    from ..spec.load import load_spec
 
     if spec.suffix.lower() in WORLD_SUFFIXES:
         raise InputError(f"{spec} is a Gazebo world, not a floorplan spec",
@@ -51,8 +51,8 @@ def build_command(spec: Path, out_dir: Path, sdf_version: str, model_dir: bool, 
     files = planned_files(building, out_dir, sdf_version=sdf_version, model_dir=model_dir,
                           description=f"{building.name}: built by worldgen from {spec.name}")
     if package_dir is not None:   # the world moves into the package, beside its launch file
-        from ..launch import package_world_files
-        from ..spawn import spec_spawn
+        from ..ros.launch import package_world_files
+        from ..ros.spawn import spec_spawn
 
         world_text = files.pop(out_dir / f"{building.name}.world")
         files.update(package_world_files(package_dir, building.name, world_text, spec_spawn(plan, world_text)))

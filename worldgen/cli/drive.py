@@ -11,7 +11,7 @@ from pathlib import Path
 import click
 
 from ..sim.exercise import BEHAVIOURS
-from . import EXIT_FAILED, EXIT_OK
+from ..core.errors import EXIT_FAILED, EXIT_OK
 
 SIM_TIMEOUT = 300.0   # s of wall time for all runs together
 
@@ -74,11 +74,12 @@ def drive(world, behaviour, robot, spawn, target, kp, ki, kd, duration, max_spee
     turns in place and reports the drift. Exit status: 0 every run stopped where it should without touching
     anything, 1 a run touched something or missed the target band, 2 bad input.
     """
-    from ..errors import InputError, WorldgenError
-    from ..fsio import check_free, write_files
-    from ..sim.process import SimCrashed, SimError, run_isolated
-    from ..spawn import parse_spawn
-    from ..validate import input_kind
+    from ..core.errors import InputError, WorldgenError
+    from ..core.fsio import check_free, write_files
+    from ..check.sources import load_scene, run_on_scene
+    from ..sim.process import SimCrashed, SimError
+    from ..core.spawnpose import parse_spawn
+    from ..check.validate import input_kind
 
     if not world.exists():
         raise InputError("no such file", path=world, hint="give a .world/.sdf file or a floorplan spec (.yaml)")
@@ -91,14 +92,14 @@ def drive(world, behaviour, robot, spawn, target, kp, ki, kd, duration, max_spee
             raise InputError("--model-path is not a folder", path=folder, hint="give a folder of Gazebo models")
     outputs = [p for p in (plot, csv_path) if p is not None]
     check_free(outputs, force)
+    scene, spec_robot = load_scene(world, "spec" if kind == "spec" else "world", model_paths)
     request = {
-        "world": str(world), "kind": "spec" if kind == "spec" else "world", "behaviour": behaviour,
+        "world": str(world), "spec_robot": spec_robot, "behaviour": behaviour,
         "robot": _robot_arg(robot), "spawn": list(parse_spawn(spawn)) if spawn is not None else None,
         "gains": gain_sets(kp, ki, kd), "target": target, "duration": duration, "max_speed": max_speed,
-        "omega": omega, "rate": float(rate), "front_angle": front_angle, "no_hit": lidar_no_hit, "tolerance": tolerance,
-        "model_paths": [str(p) for p in model_paths]}
+        "omega": omega, "rate": float(rate), "front_angle": front_angle, "no_hit": lidar_no_hit, "tolerance": tolerance}
     try:
-        result = run_isolated("worldgen.sim.exercise:drive_exercise", request, timeout=SIM_TIMEOUT)
+        result = run_on_scene("worldgen.sim.exercise:drive_exercise", scene, request, SIM_TIMEOUT)
     except (SimCrashed, SimError) as err:
         raise WorldgenError(f"the simulation failed: {str(err).splitlines()[0]}", path=world,
                             hint="'worldgen validate' says more about the world; please report it to the worldgen "
@@ -127,7 +128,7 @@ def _robot_arg(robot: str | None) -> str | None:
 
 def gain_sets(kp: tuple, ki: tuple, kd: tuple) -> list[dict]:
     """Zip repeated --kp/--ki/--kd into gain sets; a gain given once (or not at all) applies to every run."""
-    from ..errors import InputError
+    from ..core.errors import InputError
 
     runs = max(len(kp), len(ki), len(kd), 1)
     columns = {}

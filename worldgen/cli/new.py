@@ -6,8 +6,8 @@ from pathlib import Path
 
 import click
 
-from ..fsio import write_file
-from ..spec import starter_spec
+from ..core.fsio import write_file
+from ..spec.load import starter_spec
 
 
 @click.command("new")

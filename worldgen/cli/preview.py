@@ -7,9 +7,9 @@ from pathlib import Path
 
 import click
 
-from ..errors import InputError
-from ..fsio import check_free, write_file
-from ..spec import ROBOT_MODELS
+from ..core.errors import InputError
+from ..core.fsio import check_free, write_file
+from ..spec.load import ROBOT_MODELS
 
 
 @click.command("preview")
@@ -29,7 +29,7 @@ def preview(source: Path, output: Path | None, spawn: str | None, robot: str | N
     """Draw SPEC (.yaml, .json, .txt grid) or WORLD (.world, .sdf) from above, to scale: what a TurtleBot3
     meets at its own height (walls, obstacles; doors and windows of a spec), and where it spawns."""
     from ..preview import Spawn, picture, render
-    from ..spawn import parse_spawn
+    from ..core.spawnpose import parse_spawn
 
     output = output or Path(f"{source.stem}.png")
     check_free([output], force)   # before the work; write_file checks again

@@ -1,6 +1,6 @@
 """``worldgen launch``, ``worldgen scaffold`` and ``worldgen course``: catkin launch files and packages.
 
-A thin layer over :mod:`worldgen.launch`, :mod:`worldgen.spawn`, :mod:`worldgen.scaffold` and :mod:`worldgen.course`.
+A thin layer over :mod:`worldgen.ros.launch`, :mod:`worldgen.geometry.placement`, :mod:`worldgen.ros.scaffold` and :mod:`worldgen.ros.course`.
 """
 
 from __future__ import annotations
@@ -11,7 +11,7 @@ from pathlib import Path
 
 import click
 
-from ..launch import MODEL_CHOICES
+from ..ros.launch import MODEL_CHOICES
 
 
 @click.command("launch")
@@ -33,10 +33,12 @@ from ..launch import MODEL_CHOICES
 def launch_command(world: Path, package: str | None, name: str | None, model: str, spawn: str | None,
                    nodes: tuple[str, ...], output: Path | None, force: bool) -> None:
     """Write the launch file that starts Gazebo with WORLD and spawns a TurtleBot3 in it."""
-    from ..errors import InputError
-    from ..fsio import write_file
-    from ..launch import default_launch_name, format_number, launch_xml, package_name_of, parse_node
-    from ..spawn import parse_spawn, spawn_for_world
+    from ..core.errors import InputError
+    from ..core.fsio import write_file
+    from ..core.numbers import format_number
+    from ..ros.launch import default_launch_name, launch_xml, package_name_of, parse_node
+    from ..core.spawnpose import parse_spawn
+    from ..ros.spawn import spawn_for_world
 
     node_refs = [parse_node(n) for n in nodes]
     world_pkg = world.resolve().parent.parent if world.resolve().parent.name == "worlds" else None
@@ -113,7 +115,7 @@ def scaffold_command(name: str, dependencies: tuple[str, ...], meta: bool, sys_d
                      rosdistro: str | None, parent: Path, world_spec: Path | None, force: bool) -> None:
     """Create the catkin package NAME depending on DEPENDENCIES, as catkin_create_pkg does, with launch/,
     worlds/ and scripts/ folders that install, and optionally a world and its launch file."""
-    from ..scaffold import create_package, package_request
+    from ..ros.scaffold import create_package, package_request
 
     req = package_request(name, dependencies, sys_deps=sys_deps, boost_comps=boost_comps, version=version,
                           description=description, licenses=licenses, authors=authors, maintainers=maintainers,
@@ -128,7 +130,7 @@ def scaffold_command(name: str, dependencies: tuple[str, ...], meta: bool, sys_d
 @click.option("--force", is_flag=True, help="Replace an existing src/intro_robo folder.")
 def course_command(workspace: Path, force: bool) -> None:
     """Write the class packages (labs, the enclosed-room world, its launch file) into a catkin workspace."""
-    from ..course import write_course
+    from ..ros.course import write_course
 
     target = write_course(workspace, force=force)
     click.echo(f"wrote {target}; build it with: cd {workspace} && catkin_make")

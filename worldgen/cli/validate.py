@@ -7,7 +7,7 @@ from pathlib import Path
 
 import click
 
-from . import EXIT_FAILED, EXIT_OK
+from ..core.errors import EXIT_FAILED, EXIT_OK
 
 
 @click.command("validate")
@@ -39,10 +39,10 @@ def validate(paths, robot, spawn, launch_file, model_paths, fmt, junit, jobs, li
     PATH is a .world/.sdf/model.sdf file, a floorplan spec (.yaml), a launch file or a catkin package folder.
     Exit status: 0 every check passed (warnings allowed), 1 a check failed, 2 bad input.
     """
-    from ..fsio import write_file
-    from ..report import to_json, to_junit, to_text
-    from ..spawn import parse_spawn
-    from ..validate import Options, plan, run_jobs
+    from ..core.fsio import write_file
+    from ..check.report import to_json, to_junit, to_text
+    from ..core.spawnpose import parse_spawn
+    from ..check.validate import Options, plan, run_jobs
 
     options = Options(robot=robot, spawn=parse_spawn(spawn) if spawn is not None else None, launch=launch_file,
                       model_paths=tuple(model_paths), lidar_no_hit=lidar_no_hit, skip_sim=skip_sim,

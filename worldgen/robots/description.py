@@ -1,7 +1,7 @@
 """Robot descriptions: a TurtleBot3 model name or a user's ``.urdf.xacro``/``.urdf`` file → URDF text.
 
 Our own TurtleBot3 descriptions live in the ROS package folder ``worldgen_turtlebot3`` (see
-:func:`worldgen.resources.robots_dir`). xacro (PyPI) resolves ``$(find pkg)`` through ament only, so while a file
+:func:`worldgen.core.resources.robots_dir`). xacro (PyPI) resolves ``$(find pkg)`` through ament only, so while a file
 is processed its resolver is swapped for one that walks ``ROS_PACKAGE_PATH`` (and our robots folder) for a
 ``package.xml`` with that ``<name>`` — which is how ROS 1 finds packages, so the real ``turtlebot3_description``
 works too when it is on the path. :func:`absolute_mesh_paths` turns ``package://`` URIs into file paths, since
@@ -16,11 +16,11 @@ import re
 import threading
 from pathlib import Path
 
-from .. import rospkg
-from ..errors import InputError, WorldFileError
-from ..resources import robots_dir
-from ..safexml import parse_bytes
-from ..spec import ROBOT_MODELS
+from ..core import packages as rospkg
+from ..core.errors import InputError, WorldFileError
+from ..core.resources import robots_dir
+from ..core.safexml import parse_bytes
+from ..spec.load import ROBOT_MODELS
 
 MODELS = ROBOT_MODELS   # the TurtleBot3 models we describe
 _XACRO_LOCK = threading.Lock()  # xacro keeps its state in module globals
@@ -42,7 +42,7 @@ def package_search_path() -> list[Path]:
 def find_package(name: str) -> Path:
     """The folder of ROS package ``name``: the first folder under the search path whose ``package.xml`` says
     ``<name>name</name>``. ``ROOT`` and ``ROOT/name`` of every root are tried first; then the roots are crawled
-    in order as rospack does (:func:`worldgen.rospkg.crawl`). Raises :class:`PackageNotFound`; a package once
+    in order as rospack does (:func:`worldgen.core.packages.crawl`). Raises :class:`PackageNotFound`; a package once
     found is remembered for the same search path."""
     roots = tuple(package_search_path())
     key = (roots, name)

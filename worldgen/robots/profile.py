@@ -14,7 +14,8 @@ import math
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 
-from ..errors import InputError
+from ..core.errors import InputError
+from ..core.numbers import floats
 
 # TurtleBot3's diff-drive and LDS-01 numbers, used when a URDF has no plugin or sensor block.
 FALLBACK_DRIVE = {"acceleration": 1.0, "torque": 10.0, "update_rate": 30.0}
@@ -78,14 +79,6 @@ class RobotProfile:
     lidar: LidarParams | None
     friction: dict[str, float] = field(default_factory=dict)   # link → μ from its <gazebo> block
     base_frame: str = "base_footprint"
-
-
-def floats(text: str | None, n: int, default: float = 0.0) -> tuple[float, ...]:
-    """The first ``n`` numbers of a URDF attribute (``"0 0.08 0.023"``), padded with ``default``; ValueError for
-    a value that is not a number."""
-    parts = (text or "").split()
-    values = [float(p) for p in parts[:n]]
-    return tuple(values + [default] * (n - len(values)))
 
 
 def origin_of(elem: ET.Element) -> tuple[tuple[float, ...], tuple[float, ...]]:
@@ -199,7 +192,7 @@ def _lidar(gazebo: list[ET.Element], links: tuple[str, ...]) -> LidarParams | No
 
 def link_frames(joints: tuple[Joint, ...], root: str) -> dict[str, tuple[tuple[float, float, float], object]]:
     """Every link's pose in ``root``'s frame at zero joint positions: link → (xyz, 3×3 rotation matrix)."""
-    from ..sdf.poses import IDENTITY, pose_matrix
+    from ..core.poses import IDENTITY, pose_matrix
 
     frames = {root: IDENTITY}
     pending = list(joints)

@@ -1,10 +1,10 @@
-"""The world reader: a Gazebo world or model file, as people really save them, becomes a :class:`~worldgen.scene.Scene`.
+"""The world reader: a Gazebo world or model file, as people really save them, becomes a :class:`~worldgen.core.scene.Scene`.
 
 ``read_world(path)`` places every ``<collision>`` in the world frame the way Gazebo does: model ∘ nested model ∘ link ∘
 collision poses (``relative_to`` included), the first ``<state>`` applied (state poses are world-frame),
 ``<include>`` resolved through the model path, meshes loaded with trimesh. A file that is not XML at all raises
-:class:`~worldgen.errors.WorldFileError` with its line; everything else the reader notices becomes a
-:class:`~worldgen.findings.Finding` in ``scene.findings``, so one odd element never hides the rest of the world.
+:class:`~worldgen.core.errors.WorldFileError` with its line; everything else the reader notices becomes a
+:class:`~worldgen.core.findings.Finding` in ``scene.findings``, so one odd element never hides the rest of the world.
 
 Finding ids: ``sdf-version``, ``structure``, ``pose``, ``include``, ``mesh``, ``geometry``, ``sizes``, ``names``,
 ``static``, ``collision``, ``state``.
@@ -19,11 +19,11 @@ from pathlib import Path
 import numpy as np
 from lxml import etree
 
-from ..errors import WorldFileError
-from ..findings import Finding, Severity
-from ..safexml import parse_bytes
-from ..scene import Scene, Shape
-from . import poses
+from ..core.errors import WorldFileError
+from ..core.findings import Finding, Severity
+from ..core.safexml import parse_bytes
+from ..core.scene import Scene, Shape
+from ..core import poses
 from .meshes import MeshCache
 from .resolve import STOCK_MODELS, Resolved, Resolver, model_sdf_file
 

@@ -17,8 +17,8 @@ from urllib.parse import unquote
 
 from lxml import etree
 
-from .. import rospkg
-from ..safexml import parser
+from ..core import packages as rospkg
+from ..core.safexml import parser
 
 STOCK_MODELS = ("ground_plane", "sun")  # Gazebo's own models, stood in for when no model path has them
 

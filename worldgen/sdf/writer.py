@@ -1,4 +1,4 @@
-"""The SDF writer: a :class:`~worldgen.geometry.Building` becomes a Gazebo world, or a Building-Editor model folder.
+"""The SDF writer: a :class:`~worldgen.geometry.building.Building` becomes a Gazebo world, or a Building-Editor model folder.
 
 The shape is the one Gazebo's Building Editor saves (see ``world_sdf``), so a class can open, edit and re-save the
 result in Gazebo Classic, and it also suits pybullet's SDF loader: ``<static>1</static>`` rather than ``true``,
@@ -13,8 +13,8 @@ from pathlib import Path
 
 from lxml import etree
 
-from ..geometry import Building, Wall, build_geometry, obstacle_names
-from ..spec import Material, Obstacle, Spec
+from ..geometry.building import Building, Wall, build_geometry, obstacle_names
+from ..spec.load import Material, Obstacle, Spec
 
 SDF_VERSIONS = ("1.6", "1.7", "1.8", "1.9")
 DEFAULT_SDF_VERSION = "1.6"     # Gazebo 9 and 11 (ROS Melodic and Noetic) read it

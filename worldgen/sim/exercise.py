@@ -1,8 +1,8 @@
-"""``worldgen drive`` as a library job: read a world (or build one from a spec), then run the spin or the
-stop-at-wall exercise once per gain set, each in a fresh session from the same spawn pose.
+"""``worldgen drive`` as a simulator job: the spin or the stop-at-wall exercise in a scene, once per gain set,
+each in a fresh session from the same spawn pose.
 
-:func:`drive_exercise` takes and returns plain JSON-able values so that it can run in a child process
-(``run_isolated("worldgen.sim.exercise:drive_exercise", kwargs)``).
+:func:`drive_exercise` takes a pickled scene (:func:`worldgen.check.sources.run_on_scene` hands it over) and
+plain JSON-able values, and returns plain values, so that it runs in a child process.
 """
 
 from __future__ import annotations
@@ -10,38 +10,20 @@ from __future__ import annotations
 import math
 import time
 
-from ..scene import Scene
+from ..core.scene import Scene
 
 BEHAVIOURS = ("spin", "stop-at-wall")
 SETTLE_SECONDS = 0.5   # the robot comes to rest on its wheels and caster before each run
 STOP_DURATION = 20.0   # s of stop-at-wall when no duration is given (a spin's default is one full turn)
 
 
-def load_world(path: str, kind: str = "world", model_paths=()) -> tuple[Scene, dict | None]:
-    """The scene of a world file, or of the world a spec builds (``kind`` "spec"), and the spec's robot entry
-    ({"model", "spawn"}) when it has one."""
-    from ..sdf.reader import read_world, read_world_text
-
-    if kind != "spec":
-        return read_world(path, model_paths=tuple(model_paths)), None
-    from ..sdf.writer import spec_world_sdf
-    from ..spec import load_spec
-
-    spec = load_spec(path)
-    scene = read_world_text(spec_world_sdf(spec), source=spec.source or path,
-                            model_paths=tuple(model_paths))
-    robot = None
-    if spec.robot is not None:
-        robot = {"model": spec.robot.model, "spawn": [spec.robot.at[0], spec.robot.at[1], spec.robot.yaw]}
-    return scene, robot
-
-
-def drive_exercise(world: str, kind: str = "world", behaviour: str = "stop-at-wall", robot: str | None = None,
+def drive_exercise(scene_file: str, world: str, spec_robot: dict | None = None, behaviour: str = "stop-at-wall", robot: str | None = None,
                    spawn: list[float] | None = None, gains: list[dict] | None = None, target: float = 0.5,
                    duration: float | None = None, max_speed: float = 0.22, omega: float = 1.0, rate: float = 5.0,
                    front_angle: float = 10.0, no_hit: str = "inf", tolerance: float = 0.05, band: float = 0.02,
-                   model_paths=(), seed: int = 0) -> dict:
-    """Run ``behaviour`` in ``world`` and return what happened: the robot and spawn pose used (and where they
+                   seed: int = 0) -> dict:
+    """Run ``behaviour`` in the scene pickled in ``scene_file`` (read from ``world``, with the robot entry
+    ``spec_robot`` of the spec it came from, if any) and return what happened: the robot and spawn pose used (and where they
     came from), one result per gain set (spin: one run), simulated and wall-clock seconds.
 
     Robot and spawn pose: the arguments when given, else the spec's ``robot`` entry, else burger at the origin; a
@@ -55,7 +37,7 @@ def drive_exercise(world: str, kind: str = "world", behaviour: str = "stop-at-wa
     if behaviour not in BEHAVIOURS:
         raise ValueError(f"behaviour must be one of {BEHAVIOURS}, not {behaviour!r}")
     started = time.perf_counter()
-    scene, spec_robot = load_world(world, kind, model_paths)
+    scene = Scene.load(scene_file)
     robot_used = robot or (spec_robot or {}).get("model") or "burger"
     if spawn is not None:
         spawn_used, spawn_source = [float(v) for v in spawn], "--spawn"
@@ -85,8 +67,8 @@ def drive_exercise(world: str, kind: str = "world", behaviour: str = "stop-at-wa
 def _check_spawn(scene: Scene, robot: str, spawn: list[float], source: str, world: str) -> None:
     """InputError when ``spawn`` is inside a wall or an obstacle, closer to one than the robot's radius, or
     outside the world's room (as ``worldgen launch`` refuses it), with the room's deepest point as a hint."""
-    from ..launch import format_number
-    from ..spawn import checked_spawn, deepest_point, robot_radius, spawn_problem, world_rooms
+    from ..core.numbers import format_number
+    from ..geometry.placement import checked_spawn, deepest_point, robot_radius, spawn_problem, world_rooms
 
     rooms = world_rooms(scene, robot_radius(robot))
     if spawn_problem(rooms, spawn[0], spawn[1]) is None:

@@ -1,7 +1,7 @@
 """Figures and tables of ``worldgen drive`` runs: the stop-at-wall step response (distance to the wall against
 time, one curve per gain set, with the target line and the tolerance band, as in a PID lecture) or the spin's
 drift; and the time series as CSV. Both take the dict :func:`worldgen.sim.exercise.drive_exercise` returns and
-give bytes/text, so writing stays all-or-nothing in :mod:`worldgen.fsio`."""
+give bytes/text, so writing stays all-or-nothing in :mod:`worldgen.core.fsio`."""
 
 from __future__ import annotations
 

@@ -79,14 +79,14 @@ def _tail(data: bytes | None) -> str:
 
 def _rebuild_error(error: dict) -> Exception:
     if error.get("worldgen"):
-        from .. import errors
+        from ..core import errors
         cls = getattr(errors, error["type"], errors.WorldgenError)
         return cls(error["message"], path=error.get("path"), line=error.get("line"), hint=error.get("hint"))
     return SimError(f"{error['type']}: {error['message']}", error.get("traceback", ""))
 
 
 def _describe(exc: BaseException) -> dict:
-    from ..errors import WorldgenError
+    from ..core.errors import WorldgenError
     if isinstance(exc, WorldgenError):
         return {"worldgen": True, "type": type(exc).__name__, "message": exc.message, "path": exc.path,
                 "line": exc.line, "hint": exc.hint}

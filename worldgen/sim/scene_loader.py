@@ -1,4 +1,4 @@
-"""A :class:`~worldgen.scene.Scene` → static pybullet bodies, and contact points back → shape labels.
+"""A :class:`~worldgen.core.scene.Scene` → static pybullet bodies, and contact points back → shape labels.
 
 Boxes, cylinders and spheres go into compound bodies of at most 16 children (pybullet silently drops the
 children of ``createCollisionShapeArray`` beyond 16), meshes become static concave triangle meshes (split when
@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pybullet as pb
 
-from ..scene import Scene, Shape
+from ..core.scene import Scene, Shape
 
 COMPOUND_LIMIT = 16            # children per createCollisionShapeArray that pybullet keeps
 MESH_FACES_PER_SHAPE = 30_000  # ≤ 90,000 vertices per shape; pybullet refuses somewhere above 100,000

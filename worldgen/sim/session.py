@@ -24,10 +24,10 @@ from pathlib import Path
 import numpy as np
 import pybullet as pb
 
-from ..errors import InputError
+from ..core.errors import InputError
 from ..robots.description import absolute_mesh_paths, robot_file, robot_urdf
 from ..robots.profile import LidarParams, RobotProfile, robot_profile
-from ..scene import Scene
+from ..core.scene import Scene
 from .drive import DiffDrive
 from .lidar import Scan, cast_scan
 from .scene_loader import ROBOT_GROUP, ROBOT_MASK, SceneBodies, load_scene

@@ -6,6 +6,7 @@ pybullet or trimesh objects, only numbers, so it can be tested and drawn without
 
 from __future__ import annotations
 
+import pickle
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Literal
@@ -56,6 +57,16 @@ class Scene:
     shapes: list[Shape] = field(default_factory=list)
     findings: list[Finding] = field(default_factory=list)
     models: list[str] = field(default_factory=list)
+
+    def save(self, path: str | Path) -> None:
+        """Pickle the scene to ``path``: how a parent hands it to a simulator child (see :meth:`load`)."""
+        Path(path).write_bytes(pickle.dumps(self, protocol=pickle.HIGHEST_PROTOCOL))
+
+    @staticmethod
+    def load(path: str | Path) -> "Scene":
+        """The scene :meth:`save` wrote (a file the parent wrote into its own private folder)."""
+        with open(path, "rb") as handle:
+            return pickle.load(handle)
 
     def obstacles(self) -> list[Shape]:
         """Every shape but ground planes."""

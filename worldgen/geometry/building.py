@@ -28,9 +28,9 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from .errors import SpecError
-from .spec import Material, Obstacle, Opening, Point, RobotPose, Spec, WallStyle
-from .spec import _m   # lengths in messages, written as the spec's own messages write them
+from ..core.errors import SpecError
+from ..spec.load import Material, Obstacle, Opening, Point, RobotPose, Spec, WallStyle
+from ..spec.load import _m   # lengths in messages, written as the spec's own messages write them
 
 EPS = 1e-3              # two points closer than this are one point; a point this close to a line lies on it
 ANG_EPS = 1e-4          # edges whose directions differ less than this (radians) are parallel

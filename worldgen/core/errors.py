@@ -7,6 +7,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
+# Exit codes of every command: checks passed; checks ran and failed; bad input or usage (one line on stderr).
+EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT = 0, 1, 2
+
 
 class WorldgenError(Exception):
     """Base of every error a user can act on.

@@ -1,9 +1,9 @@
 """``worldgen validate``'s simulated checks as one job: spawn the robot in the scene, let it settle, take a
 360-beam scan, spin in place, then stop at the wall ahead; plain numbers back, which
-:func:`worldgen.checks.sim_findings` judges.
+:func:`worldgen.check.checks.sim_findings` judges.
 
 :func:`simulate` is what the validating process starts in a child (``run_isolated(
-"worldgen.sim.validate_job:simulate", kwargs)``). The parent hands over the scene it already read, pickled into
+"worldgen.check.sim_job:simulate", kwargs)``). The parent hands over the scene it already read, pickled into
 its own private temporary folder, so a world is read once per validation and the simulator drives in exactly
 the scene the geometric checks looked at. :func:`sim_numbers` is the same job on a scene in this process.
 """
@@ -11,11 +11,10 @@ the scene the geometric checks looked at. :func:`sim_numbers` is the same job on
 from __future__ import annotations
 
 import math
-import pickle
 import time
 
-from ..checks import STOP_TARGET
-from ..scene import Scene
+from .checks import STOP_TARGET
+from ..core.scene import Scene
 
 SETTLE_SECONDS = 1.0
 SPIN_OMEGA = 1.5            # rad/s: within both the burger's (2.84) and the waffle's (1.82) limits
@@ -28,9 +27,7 @@ def simulate(scene_file: str, robot: str = "burger", spawn: list[float] = (0.0, 
              stage_file: str | None = None, urdf: str | None = None) -> dict:
     """The job in a child process: :func:`sim_numbers` on the scene pickled in ``scene_file`` (written by the
     parent into its own temporary folder), with the robot's URDF text when the parent has processed it."""
-    with open(scene_file, "rb") as handle:
-        scene = pickle.load(handle)
-    return sim_numbers(scene, robot, spawn, no_hit, stage_file, urdf)
+    return sim_numbers(Scene.load(scene_file), robot, spawn, no_hit, stage_file, urdf)
 
 
 def sim_numbers(scene: Scene, robot: str = "burger", spawn=(0.0, 0.0, 0.0), no_hit: str = "inf",
@@ -38,12 +35,12 @@ def sim_numbers(scene: Scene, robot: str = "burger", spawn=(0.0, 0.0, 0.0), no_h
     """Run the simulated checks on ``scene`` and return plain numbers (JSON-safe).
 
     Spawns ``robot`` at ``spawn`` (x, y, yaw), lets it settle, takes a 360-beam scan, spins in place, then drives
-    to :data:`~worldgen.checks.STOP_TARGET` from the nearest wall ahead (turning to face the nearest wall first
+    to :data:`~worldgen.check.checks.STOP_TARGET` from the nearest wall ahead (turning to face the nearest wall first
     when nothing is within range ahead). Each stage is written to ``stage_file`` before it starts, so that a
     crash can be reported as "while <stage>".
     """
-    from .behaviours import settle, spin, stop_at_wall
-    from .session import Session
+    from ..sim.behaviours import settle, spin, stop_at_wall
+    from ..sim.session import Session
 
     def stage(text: str) -> None:
         if stage_file:
@@ -106,7 +103,7 @@ def _touched_points(contacts: list[dict]) -> list:
 
 def _stop_at_wall(session, stop_at_wall) -> dict:
     """Face the nearest wall when nothing is in range straight ahead, then run the P controller to the target."""
-    from .lidar import front_distance
+    from ..sim.lidar import front_distance
 
     scan = session.scan(noise=False)
     ahead = front_distance(scan, true=True)

@@ -1,6 +1,6 @@
 """What would break in a catkin package: its manifest, CMakeLists.txt, scripts and launch files.
 
-:func:`check_package` reads every launch file of the package with :func:`worldgen.launch_reader.read_launch`
+:func:`check_package` reads every launch file of the package with :func:`worldgen.ros.launch_reader.read_launch`
 and turns what it cannot resolve into findings, beside the checks of package.xml (with catkin_pkg when it is
 installed), CMakeLists.txt and the scripts' executable bits.
 """
@@ -12,11 +12,11 @@ import re
 from pathlib import Path
 from typing import Mapping, Sequence
 
-from .errors import WorldFileError
-from .findings import Finding
+from ..core.errors import WorldFileError
+from ..core.findings import Finding
 from .launch_reader import read_launch
-from .rospkg import manifest_name
-from .spec import ROBOT_MODELS
+from ..core.packages import manifest_name
+from ..spec.load import ROBOT_MODELS
 
 
 def package_launch_files(pkg_dir: str | Path) -> list[Path]:

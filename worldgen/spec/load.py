@@ -5,8 +5,8 @@ Coordinates are metres in the world frame. A room's ``rect`` or ``polygon`` give
 Building Editor draws them; wall ``i`` runs from vertex ``i`` to vertex ``i+1``; an opening's ``offset`` is the
 distance along the wall's centre-line from vertex ``i`` to the opening's near edge.
 
-Parsing (``load_spec``) lives below the dataclasses; every error is a :class:`~worldgen.errors.SpecError` naming
-the file and line. A map_server map (its own YAML, or a spec's ``map: FILE``) is read by :mod:`worldgen.occupancy`.
+Parsing (``load_spec``) lives below the dataclasses; every error is a :class:`~worldgen.core.errors.SpecError` naming
+the file and line. A map_server map (its own YAML, or a spec's ``map: FILE``) is read by :mod:`worldgen.spec.maps`.
 """
 
 from __future__ import annotations
@@ -20,7 +20,7 @@ from typing import Literal, NoReturn
 
 import yaml
 
-from .errors import SpecError
+from ..core.errors import SpecError
 from .grid import POST_PREFIX, plan_grid
 
 Point = tuple[float, float]
@@ -182,9 +182,9 @@ def spec_beside(world_path: str | Path) -> tuple[Path, Spec] | None:
 def load_spec(path: str | Path) -> Spec:
     """Read and validate a floorplan spec: YAML or JSON, or a ``.txt`` ASCII grid (cell 0.5 m, named after the
     file), or a ROS map_server map's YAML (a YAML with an ``image`` key: its occupied pixels become walls, the world
-    is named after the file; see :mod:`worldgen.occupancy`). Raises SpecError naming the file and line of the first
+    is named after the file; see :mod:`worldgen.spec.maps`). Raises SpecError naming the file and line of the first
     problem."""
-    from .occupancy import IMAGE_SUFFIXES
+    from .maps import IMAGE_SUFFIXES
 
     path = Path(path)
     if path.suffix.lower() in IMAGE_SUFFIXES:
@@ -216,7 +216,7 @@ def parse_spec(text: str, source: str | None = None) -> Spec:
 def starter_spec(name: str) -> str:
     """The commented starter spec ``worldgen new NAME`` writes: a closed 5 m × 5 m room with a window, an
     obstacle and the robot in the middle, a door offered commented out (``templates/spec/starter.yaml.j2``)."""
-    from .resources import render_template
+    from ..core.resources import render_template
 
     check_name(name, "the world name")
     return render_template("spec/starter.yaml.j2", name=name)
@@ -529,7 +529,7 @@ class _Reader:
         if not isinstance(root.value, dict):
             self.fail(f"a spec must be a block of keys (name:, walls:, rooms: …), not {_describe(root.value)}",
                       root.line, hint="start from the one `worldgen new NAME` writes")
-        from .occupancy import is_map_yaml, map_spec
+        from .maps import is_map_yaml, map_spec
 
         if is_map_yaml(root.value):   # a ROS map_server map's own YAML
             return map_spec(self, root)
@@ -554,7 +554,7 @@ class _Reader:
             segments += grid_segments
             obstacles += posts
         if "map" in keys:
-            from .occupancy import spec_map_parts
+            from .maps import spec_map_parts
 
             map_segments, posts = spec_map_parts(self, keys["map"], style)
             segments += map_segments

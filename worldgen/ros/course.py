@@ -8,7 +8,7 @@
 * ``intro_robo`` — a metapackage grouping the three.
 
 Each lab package also has a launch file that starts the class world with its node. The node scripts are rendered
-from ``templates/nodes/``; everything else comes from :mod:`worldgen.scaffold`, so the packages are exactly what
+from ``templates/nodes/``; everything else comes from :mod:`worldgen.ros.scaffold`, so the packages are exactly what
 ``worldgen scaffold`` would make.
 """
 
@@ -18,7 +18,7 @@ from dataclasses import replace
 from pathlib import Path
 
 from .launch import default_launch_name, launch_xml, parse_node
-from .resources import render_template
+from ..core.resources import render_template
 from .scaffold import PackageFiles, PackageRequest, package_files, package_request, world_from_spec
 
 REPOSITORY = "intro_robo"
@@ -38,7 +38,7 @@ def _request(name: str, description: str, maintainer: str | None, exec_only=()) 
 
 def course_files(maintainer: str | None = None) -> PackageFiles:
     """Every file of the class repository, relative to ``src/intro_robo`` (see the module docstring)."""
-    from .resources import examples_dir
+    from ..core.resources import examples_dir
 
     world_file, world_text, spawn = world_from_spec(examples_dir() / "enclosed_room.yaml")
     worlds = {world_file: world_text}
@@ -77,7 +77,7 @@ def course_files(maintainer: str | None = None) -> PackageFiles:
 def write_course(workspace: str | Path, *, force: bool = False, maintainer: str | None = None) -> Path:
     """Write ``WORKSPACE/src/intro_robo`` all at once (nothing on error). An existing ``intro_robo`` folder is
     refused unless ``force``, which replaces it. Returns the folder."""
-    from .fsio import write_tree
+    from ..core.fsio import write_tree
 
     pkg = course_files(maintainer)
     return write_tree(Path(workspace) / "src" / REPOSITORY, pkg.files, force=force, executable=pkg.executable)

@@ -5,7 +5,7 @@ defaults, ``$(arg)``/``$(env)``/``$(optenv)``/``$(find)``/``$(dirname)``/``$(ano
 ``if``/``unless``, includes with passed args — and reports the world, the robot model and every ``spawn_model``
 pose, with findings for whatever cannot be resolved instead of failing. ``$(find PKG)`` looks in the package
 holding the launch file, then its sibling packages in the same catkin source tree, then ``ROS_PACKAGE_PATH``
-(see :mod:`worldgen.rospkg`).
+(see :mod:`worldgen.core.packages`).
 """
 
 from __future__ import annotations
@@ -17,11 +17,11 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Mapping, Sequence
 
-from . import rospkg
-from .errors import WorldFileError
-from .findings import Finding
+from ..core import packages as rospkg
+from ..core.errors import WorldFileError
+from ..core.findings import Finding
 from .launch import NodeRef, join_ns
-from .spawn import Pose
+from ..core.spawnpose import Pose
 
 
 @dataclass(frozen=True)
@@ -91,7 +91,7 @@ def package_index(launch_path: str | Path, ros_package_path: Sequence[str | Path
 
 
 def _parse_xml(path: Path, what: str = "launch file"):
-    from .safexml import parse_bytes
+    from ..core.safexml import parse_bytes
 
     try:
         data = Path(path).read_bytes()

@@ -6,7 +6,7 @@ the three-tag expansion of each dependency, ``python-*`` system deps as exec_dep
 folders a class package needs (``launch/``, ``worlds/``, ``scripts/``, and ``src/``/``include/NAME`` as catkin
 makes them). A package with launch files also exec_depends on gazebo_ros, turtlebot3_description and xacro; one
 with a world also has a ``models/`` folder that it exports to Gazebo.
-(:func:`worldgen.package_check.check_package` reads a package back and says what would break.)
+(:func:`worldgen.ros.package_check.check_package` reads a package back and says what would break.)
 
 Deliberate differences from catkin_create_pkg, each where catkin's output would not work: values are XML-escaped;
 ``catkin_package()`` lists the catkin dependencies in ``CATKIN_DEPENDS`` (catkin_lint calls it an error when
@@ -24,9 +24,9 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Iterable, Mapping, Sequence
 
-from .errors import InputError
+from ..core.errors import InputError
 from .launch import launch_xml
-from .resources import render_template
+from ..core.resources import render_template
 
 # REP 144: lowercase letters, digits and underscores, starting with a letter.
 PACKAGE_NAME = re.compile(r"^[a-z][a-z0-9_]*$")
@@ -229,9 +229,9 @@ def package_files(req: PackageRequest, worlds: Mapping[str, str] | None = None,
 def world_from_spec(spec_path: str | Path, model: str = "env") -> tuple[str, str, tuple[float, ...]]:
     """Build the world of the spec at ``spec_path``: its file name ``NAME.world``, its SDF text and the robot's
     spawn pose (x, y, z, yaw): the spec's robot pose, or without one the deepest point of the room."""
-    from .sdf.writer import spec_world_sdf
+    from ..sdf.writer import spec_world_sdf
     from .spawn import spec_spawn
-    from .spec import load_spec
+    from ..spec.load import load_spec
 
     spec = load_spec(spec_path)
     world_text = spec_world_sdf(spec)
@@ -255,7 +255,7 @@ def create_package(parent: str | Path, req: PackageRequest, *, world_spec: str |
                    force: bool = False) -> Path:
     """Write the package ``req`` into ``parent/NAME`` all at once (nothing on error); with ``world_spec`` its
     world and launch file too. An existing folder is refused unless ``force`` (then it is replaced)."""
-    from .fsio import check_free, write_tree
+    from ..core.fsio import check_free, write_tree
 
     target = Path(parent) / req.name
     check_free([target], force)

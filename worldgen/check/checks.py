@@ -2,9 +2,9 @@
 findings a student can act on, plus metrics a program can read.
 
 Geometric checks run here, in the calling process: ``parse`` (the reader's own findings), ``enclosed`` (see
-:mod:`worldgen.enclosure`) and ``spawn-clear``; so does the optional ``sdformat`` (libsdformat's own check, in a
+:mod:`worldgen.geometry.enclosure`) and ``spawn-clear``; so does the optional ``sdformat`` (libsdformat's own check, in a
 child process of its own). The simulated checks — ``settle``, ``lidar``, ``spin`` and
-``stop-at-wall`` — run together in one child process per world (:mod:`worldgen.sim.validate_job`), which returns
+``stop-at-wall`` — run together in one child process per world (:mod:`worldgen.check.sim_job`), which returns
 plain numbers; :func:`sim_findings` judges them.
 """
 
@@ -17,9 +17,9 @@ from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
 
-from .findings import Finding
-from .scene import Scene
-from .spec import ROBOT_MODELS
+from ..core.findings import Finding
+from ..core.scene import Scene
+from ..spec.load import ROBOT_MODELS
 
 GEOMETRIC_CHECKS = ("parse", "enclosed", "spawn-clear")
 SIM_CHECKS = ("settle", "lidar", "spin", "stop-at-wall")
@@ -54,9 +54,9 @@ class RobotBody:
 @lru_cache(maxsize=8)
 def robot_body(robot: str = "burger") -> RobotBody:
     """The :class:`RobotBody` of a model name or URDF/xacro file (raises InputError for a bad one)."""
-    from .errors import InputError
-    from .robots import robot_urdf
-    from .robots.profile import robot_profile
+    from ..core.errors import InputError
+    from ..robots import robot_urdf
+    from ..robots.profile import robot_profile
 
     urdf = robot_urdf(robot)
     name = str(robot) if str(robot) in ROBOT_MODELS else Path(str(robot)).name
@@ -71,8 +71,8 @@ def _body_from_urdf(urdf: str, profile, name: str) -> RobotBody:
     import numpy as np
     import shapely
 
-    from .robots.profile import link_frames, origin_of
-    from .sdf.poses import rpy_matrix
+    from ..robots.profile import link_frames, origin_of
+    from ..core.poses import rpy_matrix
 
     frames = link_frames(profile.joints, profile.root_link)
     points = []
@@ -106,8 +106,8 @@ def _geometry_points(geometry):
     """Points whose hull bounds a URDF collision geometry, in its own frame (None for meshes and unknowns)."""
     import numpy as np
 
-    from .enclosure import box_corners
-    from .robots.profile import floats
+    from ..core.boxes import box_corners
+    from ..core.numbers import floats
 
     if geometry is None or not len(geometry):
         return None
@@ -169,7 +169,7 @@ def check_parse(scene: Scene) -> Outcome:
 def floor_under(scene: Scene, spawn: tuple[float, float, float]) -> tuple[float, dict]:
     """The floor height at the spawn point: 0, or the top of a floor slab under it no higher than a step the
     robot would be lifted onto (Gazebo's asphalt_plane is a 0.1 m box half sunk into the ground)."""
-    from .enclosure import ground_under
+    from ..geometry.enclosure import ground_under
 
     height, label = ground_under(scene, spawn[:2], FLOOR_STEP)
     return height, {"floor_height_m": height, "floor": label}
@@ -181,7 +181,7 @@ def check_enclosed(scene: Scene, spawn: tuple[float, float, float], body: RobotB
                    ) -> Outcome:
     """The spawn lies in a region the walls close at LiDAR height (above the floor at ``ground``);
     otherwise, where each way out is."""
-    from .enclosure import MAX_GAP, enclosure
+    from ..geometry.enclosure import MAX_GAP, enclosure
 
     height = ground + (body.lidar_height if body.lidar_height is not None else min(body.height, 0.182))
     found = enclosure(scene, spawn[:2], height)
@@ -220,7 +220,7 @@ def check_enclosed(scene: Scene, spawn: tuple[float, float, float], body: RobotB
         return Outcome([Finding("enclosed", "error", message, where=where, fix=fix)], metrics)
     # The plane is open. Can the robot itself pass each gap? Its body spans the floor to its top, so a window
     # sill or an obstacle under the beams may hold it in while the beams still pass.
-    from .enclosure import footprints_between, passage_width
+    from ..geometry.enclosure import footprints_between, passage_width
 
     band = footprints_between(scene, ground + CLIMB, ground + body.height, also=(height,))
     passes = [passage_width(band, gap) >= body.width for gap in found.gaps]
@@ -268,7 +268,7 @@ def check_spawn_clear(scene: Scene, spawn: tuple[float, float, float], body: Rob
     (above the climbing threshold) and the robot's top; how far the nearest is; room to turn in place."""
     import shapely
 
-    from .enclosure import footprints_between
+    from ..geometry.enclosure import footprints_between
 
     robot = placed_footprint(body, spawn)
     prints = footprints_between(scene, ground + CLIMB, ground + body.height)
@@ -306,7 +306,7 @@ _SHARED_NAME = re.compile(r"^Non-unique names detected in <(?P<tag>\w+) name='(?
 
 
 def check_sdformat(world_file: Path, model_paths=(), shown_as: str | None = None) -> Outcome | None:
-    """libsdformat's own check of ``world_file`` (:func:`worldgen.sdfcheck.sdformat_check`; ``model://`` through
+    """libsdformat's own check of ``world_file`` (:func:`worldgen.check.sdformat.sdformat_check`; ``model://`` through
     ``model_paths``, GAZEBO_MODEL_PATH and stand-ins for Gazebo's ground_plane and sun), or None when the library
     is not installed. Each distinct complaint is a finding with the file, line and element it names; the path of
     ``world_file`` is written as ``shown_as`` (a spec's world is checked from a temporary file).
@@ -315,7 +315,7 @@ def check_sdformat(world_file: Path, model_paths=(), shown_as: str | None = None
     (the rest of the world loads; the parse check says the same) and names shared by different kinds of children
     (a collision and a visual called alike, which libsdformat 12 refuses as SDF 1.7 does but Gazebo 11 accepts).
     """
-    from .sdfcheck import messages, sdformat_check
+    from .sdformat import messages, sdformat_check
 
     checked = sdformat_check(world_file, model_paths=model_paths)
     if checked is None:
@@ -352,7 +352,7 @@ def _sdformat_finding(message) -> Finding:
 # ------------------------------------------------------------------------------------------ simulated checks
 
 def sim_findings(numbers: dict, no_hit: str, ground: float = 0.0, floor: str | None = None) -> Outcome:
-    """Judge the numbers :func:`worldgen.sim.validate_job.sim_numbers` measured (missing parts are skipped).
+    """Judge the numbers :func:`worldgen.check.sim_job.sim_numbers` measured (missing parts are skipped).
     ``no_hit`` is what a beam that hits nothing reads ("inf" or "zero"); ``ground`` is the floor's height at the
     spawn and ``floor`` the floor slab's label, if any: standing on it is no touching."""
     findings: list[Finding] = []

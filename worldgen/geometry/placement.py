@@ -1,4 +1,4 @@
-"""Where a TurtleBot3 may spawn in a world, and the one reader of ``--spawn`` values.
+"""Where a TurtleBot3 may spawn in a scene.
 
 The spawn point of a world file is chosen inside its room: walls and obstacles are sliced in the robot's height
 band (:data:`SLICE_Z`), the free areas the walls close are found (the room holding the building's centre first),
@@ -15,8 +15,9 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Sequence
 
-from .errors import InputError
-from .launch import format_number
+from ..core.errors import InputError
+from ..core.spawnpose import Pose
+from ..core.numbers import format_number
 
 # Radius of the disc that holds each robot's footprint around base_footprint: the farthest corner of the ROBOTIS
 # navigation footprint (burger x -0.105…0.041, y ±0.105; waffle and waffle_pi x -0.205…0.077, y ±0.155). Both
@@ -28,38 +29,11 @@ ROBOT_RADIUS = {"burger": math.hypot(0.105, 0.105), "waffle": math.hypot(0.205, 
 # asphalt_plane is a 0.1 m box half sunk into the ground; the validator counts slabs up to 0.1 m as floor) and up
 # to the top of a burger (0.192 m) with some room.
 SLICE_Z = (0.11, 0.3)
-Pose = tuple[float, float, float, float]   # x, y, z, yaw
-_SPAWN_HINTS = {   # --spawn forms → how to write them (see parse_spawn)
-    True: "write --spawn X,Y or X,Y,Z or X,Y,Z,YAW in metres and radians, e.g. --spawn 1.0,-0.5,0,1.57",
-    False: "write --spawn X,Y or X,Y,YAW in metres and radians, e.g. --spawn -5.5,-1.0,1.57",
-}
 
 
 def robot_radius(model: str) -> float:
     """:data:`ROBOT_RADIUS` of a model name; a burger's for anything else (``env``, a description file)."""
     return ROBOT_RADIUS.get(model, ROBOT_RADIUS["burger"])
-
-
-def parse_spawn(text: str, z: bool = False) -> tuple[float, ...]:
-    """A ``--spawn`` value (metres, radians) → pose; InputError (with the forms to write) for anything else.
-
-    ``z`` (``worldgen launch``, which writes a launch file's pose): ``X,Y[,Z[,YAW]]`` → (x, y, z, yaw).
-    Otherwise (validate, drive, preview: the robot stands on the floor): ``X,Y[,YAW]`` → (x, y, yaw); a launch
-    file's ``X,Y,Z,YAW`` is taken too, its Z dropped.
-    """
-    parts = [p.strip() for p in text.split(",")]
-    try:
-        values = [float(p) for p in parts]
-    except ValueError:
-        values = []
-    if len(values) not in (2, 3, 4) or not all(math.isfinite(v) for v in values):
-        raise InputError(f"bad --spawn value {text!r}", hint=_SPAWN_HINTS[z])
-    if z:
-        values += [0.0] * (4 - len(values))
-        return (values[0], values[1], values[2], values[3])
-    if len(values) == 4:
-        values = [values[0], values[1], values[3]]
-    return (values[0], values[1], values[2] if len(values) == 3 else 0.0)
 
 
 @dataclass(frozen=True)
@@ -89,7 +63,7 @@ class Rooms:
 
 
 def world_rooms(scene, radius: float = ROBOT_RADIUS["burger"]) -> Rooms:
-    """Slice ``scene`` (a :class:`worldgen.scene.Scene`) in the robot's height band (:data:`SLICE_Z`) and find
+    """Slice ``scene`` (a :class:`worldgen.core.scene.Scene`) in the robot's height band (:data:`SLICE_Z`) and find
     its free areas and which of them are closed rooms."""
     import shapely
 
@@ -156,30 +130,8 @@ def spawn_problem(rooms: Rooms, x: float, y: float) -> str | None:
     return None
 
 
-def spawn_for_world(world_path: str | Path, model: str = "env", spawn: Sequence[float] | None = None
-                    ) -> tuple[Pose, str]:
-    """The spawn pose for a launch file of ``world_path`` and where it came from: ``given`` (``spawn``, checked
-    against the world), ``spec`` (the robot pose of ``NAME.yaml``/``.yml``/``.json`` beside ``NAME.world``, the
-    spec it was built from), ``world`` (the deepest point of the room) or ``open`` (the world has no closed
-    room: the deepest free point inside its walls' bounds).
-
-    Raises InputError when the pose is no place for the robot (see :func:`spawn_problem`) and WorldFileError
-    when the world cannot be read.
-    """
-    from .sdf.reader import read_world
-
-    world_path = Path(world_path)
-    rooms = world_rooms(read_world(world_path), robot_radius(model))
-    if spawn is not None:
-        return checked_spawn(rooms, spawn, source=world_path), "given"
-    pose = _spec_pose(world_path)
-    if pose is not None:
-        return checked_spawn(rooms, pose, source=world_path, what="the spec's robot pose"), "spec"
-    return checked_spawn(rooms, None, source=world_path), ("world" if rooms.rooms() else "open")
-
-
 def spawn_in_scene(scene, model: str = "env", spawn: Sequence[float] | None = None, **how) -> Pose:
-    """:func:`checked_spawn` for a :class:`worldgen.scene.Scene` and a robot model (``how``: its keywords)."""
+    """:func:`checked_spawn` for a :class:`worldgen.core.scene.Scene` and a robot model (``how``: its keywords)."""
     return checked_spawn(world_rooms(scene, robot_radius(model)), spawn, **how)
 
 
@@ -202,26 +154,6 @@ def checked_spawn(rooms: Rooms, spawn: Sequence[float] | None, *, source: str | 
             return (0.0, 0.0, 0.0, 0.0)
         raise InputError("the robot fits nowhere in this world", path=source, hint="pass --spawn X,Y")
     return (point[0], point[1], 0.0, 0.0)
-
-
-def spec_spawn(spec, world_text: str, model: str = "env") -> Pose:
-    """The spawn pose for the world built from ``spec``: the spec's robot pose, checked against ``world_text``
-    (the built world) as ``worldgen launch`` checks it, or without one the deepest point of its room."""
-    from .sdf.reader import read_world_text
-
-    pose = (spec.robot.at[0], spec.robot.at[1], 0.0, spec.robot.yaw) if spec.robot is not None else None
-    return spawn_in_scene(read_world_text(world_text, source=spec.source), model, pose, source=spec.source,
-                          what="the spec's robot pose", hint="move the robot's at: onto free floor inside the room")
-
-
-def _spec_pose(world_path: Path) -> Pose | None:
-    from .spec import spec_beside
-
-    found = spec_beside(world_path)
-    if found is None or found[1].robot is None:
-        return None
-    robot = found[1].robot
-    return (robot.at[0], robot.at[1], 0.0, robot.yaw)
 
 
 def _polygons(geometry) -> list:

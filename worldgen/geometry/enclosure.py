@@ -23,7 +23,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from .scene import Scene, Shape
+from ..core.boxes import box_corners
+from ..core.scene import Scene, Shape
 
 SLIVER = 0.0005        # every footprint grows by this much: gaps under 1 mm are closed
 MARGIN = 1.0           # the "outside" frame lies this far beyond the scene and the spawn
@@ -86,7 +87,7 @@ class Enclosure:
 def _to_world(shape: Shape, local) -> "np.ndarray":
     import numpy as np
 
-    from .sdf.poses import quat_matrix
+    from ..core.poses import quat_matrix
 
     return np.asarray(local, dtype=float) @ quat_matrix(*shape.orientation).T + np.asarray(shape.position)
 
@@ -115,19 +116,11 @@ def _convex_section(points, z: float):
     return hull if hull.geom_type == "Polygon" and hull.area > 0 else None
 
 
-def box_corners(size) -> "np.ndarray":
-    """The 8 corners (8 × 3) of a box of full ``size`` (x, y, z) centred on its own frame."""
-    import numpy as np
-
-    hx, hy, hz = (s / 2 for s in size)
-    return np.array([[sx * hx, sy * hy, sz * hz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)])
-
-
 def _cylinder_section(shape: Shape, z: float):
     import numpy as np
     import shapely
 
-    from .sdf.poses import quat_matrix
+    from ..core.poses import quat_matrix
 
     r, half = shape.radius, shape.length / 2
     axis = quat_matrix(*shape.orientation)[:, 2]
@@ -282,7 +275,7 @@ def shape_top(shape: Shape) -> float | None:
     """The highest point of a shape (world z), or None for planes and degenerate shapes."""
     import numpy as np
 
-    from .sdf.poses import quat_matrix
+    from ..core.poses import quat_matrix
 
     if shape.kind == "box" and shape.size is not None:
         return float(_to_world(shape, box_corners(shape.size))[:, 2].max())

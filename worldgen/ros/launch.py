@@ -5,8 +5,8 @@ The writer emits the class's launch file shape (the one of ``turtlebot3_gazebo``
 ``$(find PKG)/worlds/WORLD`` and the usual ``paused``/``use_sim_time``/``gui``/``headless``/``debug`` args passed
 through; ``robot_description`` from xacro; ``spawn_model`` named ``spawn_urdf``; optional extra nodes.
 
-Where the robot spawns is :mod:`worldgen.spawn`'s job; reading launch files back is
-:mod:`worldgen.launch_reader`'s, checking a catkin package :mod:`worldgen.package_check`'s.
+Where the robot spawns is :mod:`worldgen.geometry.placement`'s job; reading launch files back is
+:mod:`worldgen.ros.launch_reader`'s, checking a catkin package :mod:`worldgen.ros.package_check`'s.
 """
 
 from __future__ import annotations
@@ -16,10 +16,11 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Sequence
 
-from .errors import InputError
-from .resources import render_template
-from .rospkg import manifest_name
-from .spec import ROBOT_MODELS
+from ..core.errors import InputError
+from ..core.numbers import format_number
+from ..core.resources import render_template
+from ..core.packages import manifest_name
+from ..spec.load import ROBOT_MODELS
 
 MODEL_CHOICES = ("env",) + ROBOT_MODELS   # "env": the model comes from $(env TURTLEBOT3_MODEL) at run time
 
@@ -64,13 +65,6 @@ def parse_node(text: str) -> NodeRef:
         raise InputError(f"bad node name {name!r} in --node {text!r}",
                          hint="a node name starts with a letter and holds letters, digits and underscores")
     return NodeRef(package, node_type, name)
-
-
-def format_number(value: float) -> str:
-    """A fixed, short decimal form for launch and package files: ``1.5``, ``-5.5``, ``0.0``, ``0.125``."""
-    text = f"{float(value):.4f}".rstrip("0")
-    text = text + "0" if text.endswith(".") else text
-    return "0.0" if text in ("-0.0", "0.0") else text
 
 
 def check_package_ref(name: str) -> str:
@@ -137,7 +131,7 @@ def package_name_of(pkg_dir: str | Path) -> str:
 def package_world_files(pkg_dir: str | Path, world_name: str, world_text: str, spawn: Sequence[float],
                         model: str = "env") -> dict[Path, str]:
     """The files that put a built world into a catkin package: ``worlds/NAME.world`` and
-    ``launch/turtlebot3_in_NAME.launch`` (path → text, for :func:`worldgen.fsio.write_files`)."""
+    ``launch/turtlebot3_in_NAME.launch`` (path → text, for :func:`worldgen.core.fsio.write_files`)."""
     pkg_dir = Path(pkg_dir)
     world_file = f"{world_name}.world"
     launch_name = default_launch_name(world_file)

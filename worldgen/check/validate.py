@@ -3,8 +3,8 @@
 An input is a world file (``.world``, ``.sdf``, ``model.sdf``, or anything holding ``<sdf>``), a floorplan spec
 (built to SDF on the fly, exactly as ``worldgen build`` writes it), a roslaunch file (the world it starts, its
 robot model and spawn pose) or a catkin package folder (each of its launch files). :func:`plan` turns inputs
-into :class:`Job` s, refusing bad input (missing paths, bad options) with an :class:`~worldgen.errors.InputError`
-before anything runs; :func:`run_job` validates one job into a :class:`~worldgen.report.Result`;
+into :class:`Job` s, refusing bad input (missing paths, bad options) with an :class:`~worldgen.core.errors.InputError`
+before anything runs; :func:`run_job` validates one job into a :class:`~worldgen.check.report.Result`;
 :func:`validate` runs many on worker threads, each driving its own child processes for the simulator, and
 returns the results in input order. With ``sdformat`` set, libsdformat's own check runs too, in the same worker
 thread (the library in a child process of its own), so ``jobs`` run that in parallel as well.
@@ -25,15 +25,15 @@ from typing import Callable, Sequence
 
 from .checks import (GEOMETRIC_CHECKS, SDFORMAT_ABSENT, SIM_CHECKS, check_enclosed, check_parse,
                      check_spawn_clear, check_sdformat, floor_under, robot_body, sim_findings)
-from .errors import InputError, SpecError, WorldFileError
-from .findings import Finding
+from ..core.errors import InputError, SpecError, WorldFileError
+from ..core.findings import Finding
 from .report import Result
-from .spec import ROBOT_MODELS, SPEC_SUFFIXES, spec_beside
+from ..spec.load import ROBOT_MODELS, SPEC_SUFFIXES, spec_beside
 
 LAUNCH_SUFFIXES = (".launch", ".launch.xml")
 NO_HIT_CHOICES = ("inf", "zero")
 SIM_TIMEOUT = 120.0   # s of wall time for one world's simulation
-SIM_JOB = "worldgen.sim.validate_job:simulate"
+SIM_JOB = "worldgen.check.sim_job:simulate"
 
 
 @dataclass(frozen=True)
@@ -148,14 +148,14 @@ def plan(paths: Sequence[str | Path], options: Options) -> list[Job]:
 
 
 def _read_launch(path: Path):
-    from .launch_reader import read_launch
+    from ..ros.launch_reader import read_launch
 
     return read_launch(path)
 
 
 def _package_jobs(folder: Path, options: Options) -> list[Job]:
     """A package gives a row of its own (the package check) and one job per launch file."""
-    from .package_check import package_launch_files
+    from ..ros.package_check import package_launch_files
 
     findings = _package_findings(folder)
     launches = package_launch_files(folder)
@@ -170,9 +170,9 @@ def _package_jobs(folder: Path, options: Options) -> list[Job]:
 
 
 def _package_findings(folder: Path) -> list[Finding]:
-    """:func:`worldgen.package_check.check_package`, its ids put under ``package-`` (``cmake`` →
+    """:func:`worldgen.ros.package_check.check_package`, its ids put under ``package-`` (``cmake`` →
     ``package-cmake``)."""
-    from .package_check import check_package
+    from ..ros.package_check import check_package
 
     return [f if f.check.startswith("package") else dc_replace(f, check=f"package-{f.check}")
             for f in check_package(folder)]
@@ -248,7 +248,7 @@ def _apply_launch(job: Job, info, path: Path) -> None:
 def _spec_job(path: Path, display: str) -> Job:
     job = Job(path=display, spec=path)
     try:
-        from .spec import load_spec
+        from ..spec.load import load_spec
 
         job.floorplan = load_spec(path)
     except SpecError as err:
@@ -294,7 +294,7 @@ class WorldSource:
     text: str | None = None
 
     def read(self, model_paths):
-        from .sdf.reader import read_world, read_world_text
+        from ..sdf.reader import read_world, read_world_text
 
         if self.text is not None:
             return read_world_text(self.text, source=self.path, model_paths=model_paths)
@@ -312,7 +312,7 @@ def run_job(job: Job, options: Options) -> Result:
     if job.spec is not None:
         if job.floorplan is None:
             return _skip_rest(result, "the spec cannot be read", options)
-        from .sdf.writer import spec_world_sdf
+        from ..sdf.writer import spec_world_sdf
 
         try:
             source = WorldSource(job.spec.with_suffix(".world"), spec_world_sdf(job.floorplan))
@@ -332,7 +332,7 @@ def _parse_error(err, path: Path) -> Finding:
 
 
 def _error_finding(check: str, err, path: Path, fix: str) -> Finding:
-    """A :class:`~worldgen.errors.WorldgenError` as an error finding of ``check``: its file and line, its hint
+    """A :class:`~worldgen.core.errors.WorldgenError` as an error finding of ``check``: its file and line, its hint
     (else ``fix``)."""
     where = err.path or str(path)
     return Finding(check, "error", err.message, where=f"{where}:{err.line}" if err.line else where,
@@ -390,7 +390,7 @@ def _sdformat(result: Result, source: WorldSource, options: Options, tmp: Path) 
         world_file = tmp / source.path.name
         world_file.write_text(source.text, encoding="utf-8")
     elif source.path.is_dir():
-        from .sdf.resolve import model_sdf_file
+        from ..sdf.resolve import model_sdf_file
 
         world_file = model_sdf_file(source.path)[0]
         if world_file is None:
@@ -415,19 +415,17 @@ def _simulate(result: Result, scene, options: Options, ground: float, floor: str
     """The simulated checks on ``scene`` in one child process (the scene handed over pickled, in the job's
     temporary folder ``tmp``); a crash, a timeout or an error there becomes one error finding naming the
     stage it happened in, and the checks it prevented are skipped."""
-    import pickle
+    from ..core.errors import WorldgenError
+    from ..robots import robot_urdf
+    from ..sim.process import SimCrashed, SimError
+    from .sources import run_on_scene
 
-    from .errors import WorldgenError
-    from .robots import robot_urdf
-    from .sim.process import SimCrashed, SimError, run_isolated
-
-    stage_file, scene_file = tmp / "stage", tmp / "scene.pickle"
-    scene_file.write_bytes(pickle.dumps(scene, protocol=pickle.HIGHEST_PROTOCOL))
-    kwargs = {"scene_file": str(scene_file), "robot": result.robot, "spawn": list(result.spawn),
+    stage_file = tmp / "stage"
+    kwargs = {"robot": result.robot, "spawn": list(result.spawn),
               "no_hit": options.lidar_no_hit, "stage_file": str(stage_file),
               "urdf": robot_urdf(result.robot)}   # processed once here (robot_body did), not xacro'd per child
     try:
-        numbers = run_isolated(SIM_JOB, kwargs, options.sim_timeout)
+        numbers = run_on_scene(SIM_JOB, scene, kwargs, options.sim_timeout, tmp)
         failure = None
     except SimCrashed as err:
         what = (f"did not finish within {options.sim_timeout:g} s" if err.timed_out else

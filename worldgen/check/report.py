@@ -12,7 +12,7 @@ import math
 import re
 from dataclasses import dataclass, field
 
-from .findings import SEVERITIES, Finding
+from ..core.findings import SEVERITIES, Finding
 
 CHECK_ORDER = ("parse", "sdformat", "launch", "package", "enclosed", "spawn-clear", "settle", "lidar", "spin", "stop-at-wall")
 

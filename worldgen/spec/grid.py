@@ -10,7 +10,7 @@ to the last cell centre, one cell thick. A wall's box reaches half its thickness
 corners close), so the box covers the run's cells exactly. Vertical runs likewise. The runs are taken longest
 first (rows before columns on a tie), and a run whose cells all lie in runs taken already adds nothing and is
 dropped: a block two or more cells thick becomes a few walls along its longer side (a 3-cell-thick wall 200 cells
-long is 3 walls, not 200), which keeps a scanned map (:mod:`worldgen.occupancy`) to a sane number of boxes.
+long is 3 walls, not 200), which keeps a scanned map (:mod:`worldgen.spec.maps`) to a sane number of boxes.
 A lone ``#`` (no ``#`` left, right, above or below it) has no run to belong to; it becomes a square post.
 """
 
@@ -20,7 +20,7 @@ import math
 from dataclasses import dataclass
 from typing import Sequence
 
-from .errors import SpecError
+from ..core.errors import SpecError
 
 Point = tuple[float, float]
 

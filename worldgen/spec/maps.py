@@ -8,13 +8,13 @@ channels (alpha left out) and is replaced by 255 − p when ``negate`` is set. A
 ``occupied_thresh`` is occupied: a wall. Every other pixel, free (below ``free_thresh``) or unknown (between the two
 thresholds), is open floor.
 
-The occupied pixels become walls as an ASCII grid's ``#`` cells do (:func:`worldgen.grid.plan_grid`, one pixel per
+The occupied pixels become walls as an ASCII grid's ``#`` cells do (:func:`worldgen.spec.grid.plan_grid`, one pixel per
 cell): runs of pixels, longest first, one pixel (``resolution``) thick, whose boxes cover the pixels exactly; a lone
 pixel becomes a square post, the obstacle ``map_post_ROW_COLUMN`` (the image's pixel row and column, from 0 at the
 top left). The image is first cropped to its occupied pixels, so a 4000 × 4000 gmapping map that is mostly unknown
 costs no more than the building in it.
 
-Two ways in, both through :func:`worldgen.spec.load_spec`: the map's YAML itself (a YAML with an ``image`` key is a
+Two ways in, both through :func:`worldgen.spec.load.load_spec`: the map's YAML itself (a YAML with an ``image`` key is a
 map_server map; the world is named after the file), or a spec with ``map: FILE`` (relative to the spec) beside
 ``name``, ``walls`` (height, material), ``robot``, ``obstacles``, rooms and segments.
 """
@@ -24,9 +24,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
-from .errors import SpecError
+from ..core.errors import SpecError
 from .grid import plan_grid
-from .spec import (LIMIT, TOP_KEYS, Obstacle, Segment, Spec, WallStyle, _compose, _describe, _describe_sized, _m,
+from .load import (LIMIT, TOP_KEYS, Obstacle, Segment, Spec, WallStyle, _compose, _describe, _describe_sized, _m,
                    _Node, _Reader, _suggest_name, did_you_mean)
 
 MAP_KEYS = ("image", "resolution", "origin", "negate", "occupied_thresh", "free_thresh", "mode")

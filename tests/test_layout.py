@@ -1,0 +1,183 @@
+"""The package's folders are its design: imports run one way between them, and nothing imports in a circle.
+
+The graph is read from the source (ast), with imports inside functions counted too: a lazy import is still a
+dependency, only a cheaper one. The build path's import-time closure is checked separately, in a fresh process.
+"""
+
+from __future__ import annotations
+
+import ast
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+PACKAGE = Path(__file__).resolve().parent.parent / "worldgen"
+
+# Each part may import only parts of a lower layer (and itself). The README's design section draws these layers.
+LAYERS = {
+    "core": 0,
+    "spec": 1,
+    "geometry": 2, "robots": 2,
+    "sdf": 3,
+    "sim": 4, "ros": 4,
+    "check": 5,
+    "preview": 6,
+    "cli": 7,
+    "": -1,         # worldgen/__init__.py: the version, importing nothing
+    "__main__": 8,  # python -m worldgen
+}
+WRITERS = ("worldgen.sdf.writer", "worldgen.ros.launch", "worldgen.ros.scaffold", "worldgen.ros.course")
+BUILD_PATH = ("worldgen.spec.load", "worldgen.geometry.building", "worldgen.sdf.writer")
+HEAVY = ("pybullet", "trimesh", "shapely")
+
+
+def module_name(path: Path) -> str:
+    parts = list(path.relative_to(PACKAGE.parent).with_suffix("").parts)
+    if parts[-1] == "__init__":
+        parts.pop()
+    return ".".join(parts)
+
+
+def _imports(path: Path, top_level_only: bool = False) -> set[str]:
+    """The modules ``path`` imports (worldgen modules by full name; others by their top-level name)."""
+    name = module_name(path)
+    package = name if path.name == "__init__.py" else name.rpartition(".")[0]
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    nodes = tree.body if top_level_only else list(ast.walk(tree))
+    found = set()
+    for node in nodes:
+        if isinstance(node, ast.Import):
+            found.update(alias.name for alias in node.names)
+        elif isinstance(node, ast.ImportFrom):
+            if node.level:
+                base = package.split(".")
+                base = base[: len(base) - (node.level - 1)]
+                target = ".".join(base + ([node.module] if node.module else []))
+            else:
+                target = node.module or ""
+            found.add(target)
+            for alias in node.names:   # "from . import build": build is a module
+                if (PACKAGE.parent / Path(*f"{target}.{alias.name}".split("."))).with_suffix(".py").exists() or \
+                        (PACKAGE.parent / Path(*f"{target}.{alias.name}".split(".")) / "__init__.py").exists():
+                    found.add(f"{target}.{alias.name}")
+    return {m if m.startswith("worldgen") else m.split(".")[0] for m in found if m}
+
+
+def graph(top_level_only: bool = False) -> dict[str, set[str]]:
+    modules = {module_name(p): p for p in PACKAGE.rglob("*.py")}
+    return {name: {m for m in _imports(path, top_level_only) if m in modules or not m.startswith("worldgen")}
+            for name, path in modules.items()}
+
+
+def part(module: str) -> str:
+    parts = module.split(".")
+    return parts[1] if len(parts) > 1 else ""
+
+
+def cycles(g: dict[str, set[str]]) -> list[list[str]]:
+    """Every strongly connected set of more than one module (or a module importing itself), Tarjan's way."""
+    index, low, stack, on_stack, found = {}, {}, [], set(), []
+
+    def visit(v: str) -> None:
+        index[v] = low[v] = len(index)
+        stack.append(v)
+        on_stack.add(v)
+        for w in g.get(v, ()):
+            if w not in g:
+                continue
+            if w not in index:
+                visit(w)
+                low[v] = min(low[v], low[w])
+            elif w in on_stack:
+                low[v] = min(low[v], index[w])
+        if low[v] == index[v]:
+            component = []
+            while True:
+                w = stack.pop()
+                on_stack.discard(w)
+                component.append(w)
+                if w == v:
+                    break
+            if len(component) > 1 or v in g.get(v, ()):
+                found.append(sorted(component))
+
+    for v in sorted(g):
+        if v not in index:
+            visit(v)
+    return found
+
+
+def closure(g: dict[str, set[str]], start: str) -> set[str]:
+    seen, todo = set(), [start]
+    while todo:
+        m = todo.pop()
+        if m in seen:
+            continue
+        seen.add(m)
+        todo.extend(g.get(m, ()))
+    return seen
+
+
+def test_every_part_is_in_a_layer():
+    parts = {part(m) for m in graph()}
+    assert parts <= set(LAYERS), f"parts with no layer: {sorted(parts - set(LAYERS))}"
+
+
+def test_root_reads_as_the_design_in_at_most_ten_entries():
+    entries = [p.name for p in PACKAGE.iterdir() if not p.name.startswith("__") and p.name != "py.typed"]
+    assert len(entries) <= 10, sorted(entries)
+
+
+def test_no_module_imports_in_a_circle():
+    assert cycles(graph()) == []
+
+
+def test_imports_run_down_the_layers_only():
+    wrong = []
+    for module, imported in graph().items():
+        for target in imported:
+            if target.startswith("worldgen") and part(target) != part(module) and \
+                    LAYERS[part(target)] >= LAYERS[part(module)]:
+                wrong.append(f"{module} → {target}")
+    assert wrong == []
+
+
+def test_the_simulation_never_reaches_a_writer():
+    g = graph()
+    for module in (m for m in g if part(m) == "sim"):
+        reached = closure(g, module)
+        assert not reached.intersection(WRITERS), (module, sorted(reached.intersection(WRITERS)))
+
+
+def test_the_build_path_imports_nothing_heavy_at_import_time():
+    g = graph(top_level_only=True)
+    for module in BUILD_PATH:
+        assert not closure(g, module).intersection(HEAVY), module
+    code = (f"import sys, json; import {', '.join(BUILD_PATH)}; "
+            f"print(json.dumps(sorted(m for m in {list(HEAVY)!r} if m in sys.modules)))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True,
+                         cwd=PACKAGE.parent).stdout
+    assert json.loads(out) == []
+
+
+@pytest.mark.parametrize("bad", [
+    {"worldgen.a.x": {"worldgen.a.y"}, "worldgen.a.y": {"worldgen.a.x"}},
+    {"worldgen.a.x": {"worldgen.a.x"}},
+])
+def test_the_circle_finder_finds_circles(bad):
+    assert cycles(bad)
+
+
+def test_no_module_is_over_600_lines_nor_a_class_over_250():
+    long = []
+    for path in PACKAGE.rglob("*.py"):
+        text = path.read_text(encoding="utf-8")
+        if text.count("\n") > 600:
+            long.append(f"{path.name}: {text.count(chr(10))} lines")
+        for node in ast.walk(ast.parse(text)):
+            if isinstance(node, ast.ClassDef) and node.end_lineno - node.lineno + 1 > 250:
+                long.append(f"{path.name}: class {node.name} {node.end_lineno - node.lineno + 1} lines")
+    assert long == []

@@ -1,0 +1,2 @@
+"""Plane geometry: a spec's walls, joins and openings as boxes (:mod:`.building`, on the build path: no shapely),
+and a scene's rooms, gaps and free floor (:mod:`.enclosure`, :mod:`.placement`, with shapely)."""
