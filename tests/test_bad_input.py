@@ -4,7 +4,7 @@ writes nothing; an existing output is kept unless --force."""
 from __future__ import annotations
 
 import pytest
-from click.testing import CliRunner
+from conftest import CliRunner
 
 from worldgen.cli import main
 from worldgen.core.errors import SpecError

@@ -8,7 +8,7 @@ from pathlib import Path
 from types import SimpleNamespace
 
 import pytest
-from click.testing import CliRunner
+from conftest import CliRunner
 
 from conftest import EXAMPLES
 from worldgen.cli import main

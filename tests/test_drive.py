@@ -7,7 +7,7 @@ import math
 import textwrap
 
 import pytest
-from click.testing import CliRunner
+from conftest import CliRunner
 
 from worldgen.cli import main
 from worldgen.cli.drive import gain_sets

@@ -7,7 +7,7 @@ import math
 import struct
 
 import pytest
-from click.testing import CliRunner
+from conftest import CliRunner
 
 from conftest import EXAMPLES
 from worldgen.cli import main

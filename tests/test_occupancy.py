@@ -11,7 +11,7 @@ import random
 import numpy as np
 import pytest
 import shapely
-from click.testing import CliRunner
+from conftest import CliRunner
 
 from conftest import EXAMPLES
 from worldgen.cli import main

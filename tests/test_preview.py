@@ -8,7 +8,7 @@ import struct
 
 import numpy as np
 import pytest
-from click.testing import CliRunner
+from conftest import CliRunner
 from matplotlib import colors
 from matplotlib.image import imread
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import re
 
 import pytest
-from click.testing import CliRunner
+from conftest import CliRunner
 
 from conftest import REPO
 from worldgen.cli import main

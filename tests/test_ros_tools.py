@@ -13,7 +13,7 @@ import subprocess
 from pathlib import Path
 
 import pytest
-from click.testing import CliRunner
+from conftest import CliRunner
 
 from rosstubs import (SCAN_DRIVER, SYSTEM_PYTHON, TWIST_ECHO, make_stub_packages, need, need_module, roslaunch_load,
                       ros_env, start_roscore, stop_process)

@@ -6,7 +6,7 @@ import json
 
 import pytest
 import yaml
-from click.testing import CliRunner
+from conftest import CliRunner
 
 from worldgen.cli import main
 from worldgen.core.errors import SpecError

@@ -10,7 +10,7 @@ from dataclasses import dataclass
 
 import pytest
 import shapely
-from click.testing import CliRunner
+from conftest import CliRunner
 from lxml import etree
 from shapely.geometry import LineString, Polygon
 from shapely.ops import unary_union

@@ -15,7 +15,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Sequence
+from typing import Sequence, Tuple
 
 from .spec.grid import POST_PREFIX
 from .core.scene import Scene
@@ -32,7 +32,7 @@ ROBOT_COLOUR = "#d62728"
 RAY_HIT_COLOUR = "#2ca02c"
 RAY_MISS_COLOUR = "#b0b0b0"
 
-Ray = tuple[float, float, float, float, bool]   # x0, y0, x1, y1, hit
+Ray = Tuple[float, float, float, float, bool]   # x0, y0, x1, y1, hit
 
 
 @dataclass(frozen=True)

@@ -7,11 +7,11 @@ import os
 import shutil
 import tempfile
 from pathlib import Path
-from typing import Mapping
+from typing import Mapping, Union
 
 from .errors import InputError, OutputExistsError
 
-FileData = str | bytes
+FileData = Union[str, bytes]
 
 
 def _as_bytes(data: FileData) -> bytes:

@@ -9,13 +9,13 @@ from __future__ import annotations
 import pickle
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Literal
+from typing import Literal, Tuple
 
 from .findings import Finding
 
 ShapeKind = Literal["box", "cylinder", "sphere", "mesh", "plane"]
-Vec3 = tuple[float, float, float]
-Quat = tuple[float, float, float, float]  # x, y, z, w (pybullet's order)
+Vec3 = Tuple[float, float, float]
+Quat = Tuple[float, float, float, float]  # x, y, z, w (pybullet's order)
 
 
 @dataclass

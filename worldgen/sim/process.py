@@ -91,7 +91,7 @@ def _describe(exc: BaseException) -> dict:
         return {"worldgen": True, "type": type(exc).__name__, "message": exc.message, "path": exc.path,
                 "line": exc.line, "hint": exc.hint}
     return {"worldgen": False, "type": type(exc).__name__, "message": str(exc),
-            "traceback": "".join(traceback.format_exception(exc))}
+            "traceback": "".join(traceback.format_exception(type(exc), exc, exc.__traceback__))}
 
 
 def _child() -> int:

@@ -18,11 +18,11 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Sequence
+from typing import Sequence, Tuple
 
 from ..core.errors import SpecError
 
-Point = tuple[float, float]
+Point = Tuple[float, float]
 
 WALL = "#"
 FREE = frozenset(". ")

@@ -16,14 +16,14 @@ import math
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Literal, NoReturn
+from typing import Literal, NoReturn, Tuple
 
 import yaml
 
 from ..core.errors import SpecError
 from .grid import POST_PREFIX, plan_grid
 
-Point = tuple[float, float]
+Point = Tuple[float, float]
 
 DEFAULT_THICKNESS = 0.15   # Building Editor default
 DEFAULT_HEIGHT = 2.5       # Building Editor default (level height)
