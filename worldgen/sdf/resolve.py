@@ -171,3 +171,16 @@ class Resolver:
         if self._ok(path, want_dir) or (want_dir and path.is_file() and path.suffix in (".sdf", ".world")):
             return Resolved(uri, path)
         return Resolved(uri, None, f"{path} does not exist")
+
+
+MODEL_PATH_FIX = "put the folder that holds it on GAZEBO_MODEL_PATH (or pass --model-path DIR to worldgen)"
+
+
+def uri_fix(uri: str, resolved: Resolved) -> str:
+    """How to make an unresolved model or mesh URI resolvable."""
+    if uri.startswith(("model://", "package://")) and not uri.startswith("model:///"):
+        return MODEL_PATH_FIX
+    if resolved.remote:
+        return "download it and refer to it with a model:// URI"
+    return ("the path points at a folder on the author's machine: copy the model folder somewhere on "
+            "GAZEBO_MODEL_PATH (or --model-path DIR) and refer to it as model://NAME")

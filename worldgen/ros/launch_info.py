@@ -1,0 +1,51 @@
+"""What :func:`worldgen.ros.launch_reader.read_launch` finds in a launch file: the world, the robots it spawns,
+its args, nodes and includes, and findings for whatever could not be resolved."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ..core.findings import Finding
+from ..core.spawnpose import Pose
+from .launch import NodeRef
+
+
+@dataclass(frozen=True)
+class RobotSpawn:
+    """One ``gazebo_ros/spawn_model`` node: its full name, the ``-model`` name, the ``-param`` it reads the
+    description from, the robot model (burger/waffle/…) when known and the pose (None when unresolved)."""
+
+    node: str
+    model_name: str | None
+    param: str | None
+    robot: str | None
+    pose: Pose | None
+    line: int | None = None
+
+
+@dataclass
+class LaunchInfo:
+    """What a launch file starts, as far as worlds and robots go.
+
+    ``world_path`` is the world file passed to gazebo_ros as ``world_name`` (None when it cannot be resolved or
+    none is passed); ``world_ref`` is that value with args expanded but ``$(find)`` kept; ``package`` is the
+    package named by its ``$(find PKG)``. ``robots`` lists every spawn_model node (in file order, includes
+    followed); ``model`` and ``spawn`` are the first robot's (for one-robot files: *the* robot), falling back to
+    the ``model`` and ``x_pos``/``y_pos``/``z_pos``/``yaw`` args when no spawn node could be read.
+    ``model_env`` names the environment variable the model depends on when it was not set. ``args`` are the
+    top-level args' values (None when unresolved). ``findings`` say what could not be resolved and why.
+    """
+
+    path: Path
+    world_path: Path | None = None
+    world_ref: str | None = None
+    package: str | None = None
+    model: str | None = None
+    model_env: str | None = None
+    spawn: Pose | None = None
+    args: dict[str, str | None] = field(default_factory=dict)
+    robots: list[RobotSpawn] = field(default_factory=list)
+    nodes: list[NodeRef] = field(default_factory=list)
+    includes: list[Path] = field(default_factory=list)
+    findings: list[Finding] = field(default_factory=list)

@@ -1,0 +1,281 @@
+"""The launch-file walker: one file's elements in order — ``<arg>``, ``<group>``, ``<param>``, ``<include>``
+(followed), ``<node>`` (``gazebo_ros/spawn_model`` read for its pose, model and description) — into a
+:class:`~.launch_info.LaunchInfo`, with ``$(...)`` and ``if``/``unless`` evaluated by :mod:`.substitution`.
+
+Read top-down: :func:`load_launch` parses a file and walks it (:func:`walk`), which hands each element in
+effect to its reader (:data:`ELEMENTS`).
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import shlex
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Callable, Dict, List, Optional
+
+from ..core.errors import WorldFileError
+from ..core.findings import Finding
+from .launch import NodeRef, join_ns
+from .launch_info import LaunchInfo, RobotSpawn
+from .substitution import (ArgValue, Lookup, Scope, Unresolved, condition, expand, expand_lenient,
+                           expand_or_keep, try_expand)
+
+XACRO_MODEL = re.compile(r"turtlebot3_([A-Za-z0-9_]+)\.urdf(?:\.xacro)?\b")
+GAZEBO_FLAGS = {"-x": 0, "-y": 1, "-z": 2, "-Y": 3}
+MAX_INCLUDE_DEPTH = 16
+STOCK_PACKAGES = frozenset({"gazebo_ros", "xacro", "turtlebot3_description", "turtlebot3_gazebo"})
+
+
+@dataclass
+class LaunchRead:
+    """One read of a launch file and its includes: what is found so far and the files being read."""
+
+    lookup: Lookup
+    info: LaunchInfo
+    params: Dict[str, str] = field(default_factory=dict)   # full name → text (unresolved parts marked)
+    stack: List[Path] = field(default_factory=list)         # the files being read, outermost first
+    raw_args: Dict[str, Optional[str]] = field(default_factory=dict)   # the top-level args as written
+
+    def note(self, check: str, severity: str, message: str, scope: Scope, line: int | None, fix: str | None):
+        """A finding at ``scope``'s file and ``line`` (each one once)."""
+        where = f"{scope.path}:{line}" if line else str(scope.path)
+        finding = Finding(check, severity, message, where=where, fix=fix)
+        if finding not in self.info.findings:
+            self.info.findings.append(finding)
+
+    def unresolved(self, err: Unresolved, what: str, scope: Scope, line: int | None):
+        """A finding for a substitution that could not be evaluated, with the fix for its kind."""
+        if err.package:
+            # Gazebo's and the TurtleBot3's own packages are missing on most machines that are not robot PCs.
+            severity = "info" if err.package in STOCK_PACKAGES else "warning"
+            self.note("launch-find", severity, f"{what}: {err.reason}", scope, line,
+                      f"put the package {err.package} in this catkin workspace or on ROS_PACKAGE_PATH")
+        elif err.env:
+            self.note("launch-env", "info", f"{what}: {err.reason}", scope, line,
+                      f"export {err.env} (or pass the arg on the command line)")
+        else:
+            self.note("launch-arg", "warning", f"{what}: {err.reason}", scope, line,
+                      "pass the arg (name:=value) or give it a default")
+
+
+def parse_launch_xml(path: Path, what: str = "launch file"):
+    """The root element of the XML file ``path``; WorldFileError when it cannot be read or is not XML."""
+    from ..core.safexml import parse_bytes
+
+    try:
+        data = Path(path).read_bytes()
+    except OSError as err:
+        raise WorldFileError(f"cannot read the {what}: {err.strerror or err}", path=path,
+                             hint="check the path") from None
+    return parse_bytes(data, path, what=what,
+                       hint="fix the XML (every tag closed, attributes quoted, '<' and '&' escaped)",
+                       empty_hint="a launch file holds one <launch> element")
+
+
+def load_launch(read: LaunchRead, path: Path, passed: Dict[str, ArgValue], ns: str, line: int | None) -> None:
+    """Read the launch file ``path`` (given the args ``passed`` to it, in namespace ``ns``) into ``read``; the
+    top-level file's args become ``read.info.args``."""
+    path = Path(path)
+    if path.resolve() in read.stack:
+        raise WorldFileError("a launch file includes itself", path=path, line=line,
+                             hint="remove the circular <include>")
+    if len(read.stack) >= MAX_INCLUDE_DEPTH:
+        raise WorldFileError("includes nest too deeply", path=path, line=line, hint="remove circular includes")
+    root = parse_launch_xml(path)
+    if root.tag != "launch":
+        raise WorldFileError(f"the root element is <{root.tag}>, not <launch>", path=path,
+                             line=root.sourceline, hint="a launch file holds one <launch> element")
+    read.stack.append(path.resolve())
+    scope = Scope(path, {}, passed, ns)
+    walk(read, root, scope)
+    read.stack.pop()
+    if len(read.stack) == 0:
+        read.info.args = {k: (None if isinstance(v, Unresolved) else _found_path(read, v, scope))
+                          for k, v in scope.args.items()}
+
+
+def _found_path(read: LaunchRead, value: str, scope: Scope) -> str | None:
+    try:
+        return expand(read.lookup, value, scope, find=True)
+    except Unresolved:
+        return None
+
+
+def walk(read: LaunchRead, parent, scope: Scope) -> None:
+    """Every element under ``parent`` whose ``if``/``unless`` holds, to its reader in :data:`ELEMENTS`."""
+    for el in parent:
+        if not isinstance(el.tag, str) or not condition(read.lookup, el, scope, read.unresolved):
+            continue
+        handler = ELEMENTS.get(el.tag)
+        if handler is not None:
+            handler(read, el, scope)
+
+
+def read_arg(read: LaunchRead, el, scope: Scope) -> None:
+    """``<arg>``: its value (fixed), the value passed to the file, or its default — or Unresolved."""
+    name = el.get("name")
+    if not name:
+        raise WorldFileError("<arg> without a name", path=scope.path, line=el.sourceline,
+                             hint='write <arg name="..." default="..."/>')
+    if el.get("value") is not None and el.get("default") is not None:
+        raise WorldFileError(f"<arg name=\"{name}\"> has both value and default", path=scope.path,
+                             line=el.sourceline, hint="keep one of them")
+    value: ArgValue
+    if el.get("value") is not None:
+        value = try_expand(read.lookup, el.get("value"), scope)
+    elif name in scope.passed:
+        value = scope.passed[name]
+    elif el.get("default") is not None:
+        value = try_expand(read.lookup, el.get("default"), scope)
+    else:
+        value = Unresolved(f"arg {name!r} has no value (it must be passed: {name}:=...)")
+    scope.args[name] = value
+    if len(read.stack) == 1:
+        read.raw_args[name] = el.get("value", el.get("default"))
+
+
+def read_group(read: LaunchRead, el, scope: Scope) -> None:
+    """``<group>``: its elements, in its namespace."""
+    ns = join_ns(scope.ns, expand_or_keep(read.lookup, el.get("ns") or "", scope))
+    walk(read, el, Scope(scope.path, scope.args, scope.passed, ns))   # args are shared with the file
+
+
+def read_param(read: LaunchRead, el, scope: Scope) -> None:
+    """``<param>``: its text (a robot description's xacro command, say), kept to find the robot model."""
+    name = el.get("name")
+    if not name:
+        return
+    raw = el.get("command") or el.get("value") or el.get("textfile") or ""
+    read.params[join_ns(scope.ns, expand_or_keep(read.lookup, name, scope))] = \
+        expand_lenient(read.lookup, raw, scope)[0]
+
+
+def read_include(read: LaunchRead, el, scope: Scope) -> None:
+    """``<include>``: the args passed (``world_name`` read as the world), then the included file followed."""
+    raw = el.get("file")
+    if not raw:
+        raise WorldFileError("<include> without a file", path=scope.path, line=el.sourceline,
+                             hint='write <include file="$(find PKG)/launch/NAME.launch">')
+    passed: Dict[str, ArgValue] = {}
+    if el.get("pass_all_args", "").lower() in ("true", "1"):
+        passed.update(scope.args)
+    for child in el:
+        if isinstance(child.tag, str) and child.tag == "arg" and child.get("name") and \
+                condition(read.lookup, child, scope, read.unresolved):
+            passed[child.get("name")] = try_expand(read.lookup, child.get("value", child.get("default", "")), scope)
+    if "world_name" in passed and read.info.world_ref is None:
+        read_world_name(read, passed["world_name"], _child_line(el, "world_name"), scope)
+    ns = join_ns(scope.ns, expand_or_keep(read.lookup, el.get("ns") or "", scope))
+    try:
+        target = Path(expand(read.lookup, raw, scope, find=True))
+    except Unresolved as err:
+        read.unresolved(err, f"<include file=\"{raw}\"> not followed", scope, el.sourceline)
+        return
+    if not target.is_file():
+        read.note("launch-include", "warning", f"included file {target} does not exist", scope,
+                  el.sourceline, "fix the path of the <include>")
+        return
+    read.info.includes.append(target)
+    load_launch(read, target, passed, ns, el.sourceline)
+
+
+def read_world_name(read: LaunchRead, value: ArgValue, line: int | None, scope: Scope) -> None:
+    """The ``world_name`` passed to gazebo_ros: the world's reference, package and (when absolute) path."""
+    if isinstance(value, Unresolved):
+        read.unresolved(value, "world_name", scope, line)
+        return
+    read.info.world_ref = value
+    found = re.match(r"\s*\$\(find\s+([^)\s]+)\)", value)
+    read.info.package = found.group(1) if found else None
+    try:
+        resolved = expand(read.lookup, value, scope, find=True).strip()
+    except Unresolved as err:
+        read.unresolved(err, f"world_name {value}", scope, line)
+        return
+    if not os.path.isabs(resolved):
+        read.note("launch-world", "info", f"world_name {resolved!r} is found through Gazebo's resource path",
+                  scope, line, "give the world as $(find PKG)/worlds/NAME.world to check it")
+        return
+    read.info.world_path = Path(resolved)
+
+
+def read_node(read: LaunchRead, el, scope: Scope) -> None:
+    """``<node>``: recorded, and read as a robot spawn when it is ``gazebo_ros/spawn_model``."""
+    pkg, node_type, name = el.get("pkg"), el.get("type"), el.get("name")
+    if not pkg or not node_type:
+        raise WorldFileError("<node> without pkg or type", path=scope.path, line=el.sourceline,
+                             hint='write <node pkg="PKG" type="EXECUTABLE" name="NAME"/>')
+    ns = join_ns(scope.ns, expand_or_keep(read.lookup, el.get("ns") or "", scope))
+    args, errors = expand_lenient(read.lookup, el.get("args") or "", scope)
+    node = NodeRef(pkg, node_type, expand_or_keep(read.lookup, name or node_type, scope), ns,
+                   None if errors else args, el.sourceline)
+    read.info.nodes.append(node)
+    if (pkg, node_type) == ("gazebo_ros", "spawn_model"):
+        read_spawn(read, node, args, errors, scope, el.sourceline)
+
+
+def read_spawn(read: LaunchRead, node: NodeRef, args: str, errors: List[Unresolved], scope: Scope,
+               line: int | None) -> None:
+    """Record a spawn_model node: its -x -y -z -Y pose (0 when not given, as spawn_model does), -model and
+    -param. A pose number that cannot be resolved or read leaves the pose unknown, with a finding."""
+    words = shlex.split(args)
+    pose: Optional[List[float]] = [0.0, 0.0, 0.0, 0.0]
+    model_name = param = None
+    for i, word in enumerate(words):
+        following = words[i + 1] if i + 1 < len(words) else None
+        if word in GAZEBO_FLAGS:
+            marker = re.search(r"\0(\d+)\0", following or "")
+            if marker:
+                read.unresolved(errors[int(marker.group(1))], f"spawn_model {node.full_name} {word}", scope, line)
+                pose = None
+                continue
+            try:
+                value = float(following)
+            except (TypeError, ValueError):
+                read.note("launch-spawn", "error", f"spawn_model {word} {following!r} is not a number", scope,
+                          line, "give the pose as numbers (or $(arg NAME) with a numeric default)")
+                pose = None
+                continue
+            if pose is not None:
+                pose[GAZEBO_FLAGS[word]] = value
+        elif word == "-model":
+            model_name = None if following is None or "\0" in following else following
+        elif word == "-param":
+            param = None if following is None or "\0" in following else following
+    for i, word in enumerate(words):   # an unresolved word that is no flag's value may hold the pose itself
+        marker = re.search(r"\0(\d+)\0", word)
+        if marker and not (i > 0 and words[i - 1].startswith("-")):
+            read.unresolved(errors[int(marker.group(1))], f"spawn_model {node.full_name}: pose unknown",
+                            scope, line)
+            pose = None
+    robot = robot_of(read, param, node.ns)
+    read.info.robots.append(RobotSpawn(node.full_name, model_name, param, robot,
+                                       None if pose is None else (pose[0], pose[1], pose[2], pose[3]), line))
+
+
+def robot_of(read: LaunchRead, param: str | None, ns: str) -> str | None:
+    """The TurtleBot3 model (burger/waffle/…) whose xacro the description ``param`` is made from, if known."""
+    if not param:
+        return None
+    text = read.params.get(param if param.startswith("/") else join_ns(ns, param))
+    found = XACRO_MODEL.search(text or "")
+    return found.group(1) if found else None
+
+
+def _child_line(el, arg_name: str) -> int | None:
+    for child in el:
+        if isinstance(child.tag, str) and child.tag == "arg" and child.get("name") == arg_name:
+            return child.sourceline
+    return el.sourceline
+
+
+# The elements the walker reads; any other (remap, rosparam, machine, test, …) adds nothing here.
+ELEMENTS: Dict[str, Callable[[LaunchRead, object, Scope], None]] = {
+    "arg": read_arg,
+    "group": read_group,
+    "param": read_param,
+    "include": read_include,
+    "node": read_node,
+}

@@ -1,0 +1,111 @@
+"""``<include>``: its URI resolved through the model path, the included model file parsed and read (as a model
+of the including scope), Gazebo's stock ground plane stood in for, include cycles cut.
+
+The included ``<model>`` is read by the function the caller passes (:func:`worldgen.sdf.models.read_model`), so
+that reading a model and including one do not import each other.
+"""
+
+from __future__ import annotations
+
+from typing import Callable, Optional, Tuple
+
+import numpy as np
+
+from ..core.errors import WorldFileError
+from .context import ReadContext, SdfFile, describe_file, parse_sdf
+from .frames import Frames
+from .resolve import STOCK_MODELS, Resolved, model_sdf_file, uri_fix
+from .tree import Model, ground_plane
+from .values import children, read_bool, read_pose
+
+INCLUDE_CHILDREN = {"uri", "name", "pose", "static", "plugin", "placement_frame"}
+MAX_INCLUDE_DEPTH = 16
+
+# read_model(ctx, model_element, file, parent_static, frames, name=..., static=...) -> Model
+ReadModel = Callable[..., Model]
+
+
+def read_include(ctx: ReadContext, el, f: SdfFile, parent_static: bool, frames: Frames,
+                 read_model: ReadModel) -> Optional[Tuple[Model, np.ndarray, Optional[str]]]:
+    """An ``<include>``: (model, pose in parent, relative_to) or None when it adds no geometry."""
+    where = f.where(el)
+    uri = (el.findtext("uri") or "").strip()
+    for child in children(el):
+        if child.tag not in INCLUDE_CHILDREN:
+            ctx.note("structure", "info", f"<{child.tag}> inside <include> is not part of SDF; Gazebo "
+                     "ignores it", f.where(child), "remove it, or change the included model itself")
+    if not uri:
+        ctx.note("include", "warning", "<include> without a <uri>; skipped", where,
+                 "add <uri>model://NAME</uri>")
+        return None
+    name_override = (el.findtext("name") or "").strip() or None
+    static_override = read_bool(ctx, el.find("static"), f, None)
+    resolved = ctx.resolver.resolve(uri, f.dir, want_dir=True)
+    stock = resolved.model_name if resolved.model_name in STOCK_MODELS else None
+    if resolved.path is None:
+        if stock == "ground_plane":
+            ctx.note("include", "info", f"{uri}: Gazebo's stock ground plane, stood in for by a plane at "
+                     "z = 0", where)
+            return (ground_plane(name_override or "ground_plane", where), *read_pose(ctx, el, f))
+        if stock == "sun":
+            return None
+        if resolved.remote:
+            ctx.note("include", "warning", f"{uri} is an online (Fuel) model; it is never downloaded, so its "
+                     "geometry is missing", where,
+                     "download it and put its folder on GAZEBO_MODEL_PATH, or pass --model-path DIR")
+        else:
+            ctx.note("include", "warning", f"cannot find included model {uri}: {resolved.reason}; its "
+                     "geometry is missing (not counted as walls)", where, uri_fix(uri, resolved))
+        return None
+    model = load_included(ctx, resolved, where, parent_static, name_override, static_override, frames, read_model)
+    if model is None:
+        return None
+    if el.find("pose") is None:   # the include's pose replaces the model's own; without one, that stands
+        return model, model.pose, None
+    return (model, *read_pose(ctx, el, f))
+
+
+def load_included(ctx: ReadContext, resolved: Resolved, where: str, parent_static: bool, name: Optional[str],
+                  static: Optional[bool], frames: Frames, read_model: ReadModel) -> Optional[Model]:
+    """Parse the model file ``resolved`` points at (a model folder's SDF file) and read its ``<model>``, with
+    its own pose; None (with a finding) for a folder without SDF, an include cycle, a file that cannot be read,
+    or a file holding no model."""
+    path = resolved.path
+    assert path is not None
+    if path.is_dir():
+        sdf_file, note = model_sdf_file(path)
+        if note:
+            ctx.note("include", "info", f"{resolved.uri}: {note}", where)
+        if sdf_file is None:
+            ctx.note("include", "warning", f"{resolved.uri} resolves to {path}, which has no SDF file",
+                     where, "give the model folder a model.config and a model.sdf")
+            return None
+        path = sdf_file
+    if path in ctx.include_stack or len(ctx.include_stack) >= MAX_INCLUDE_DEPTH:
+        why = ("includes itself (directly or through other models)" if path in ctx.include_stack else
+               f"is nested more than {MAX_INCLUDE_DEPTH} includes deep")
+        ctx.note("include", "error", f"{resolved.uri} {why}", where, "break the include cycle")
+        return None
+    try:
+        root = parse_sdf(path.read_bytes(), path)
+    except (WorldFileError, OSError) as err:
+        ctx.note("include", "error", f"included model {resolved.uri} cannot be read: {err}", where,
+                 "fix the included file")
+        return None
+    inc = describe_file(ctx, root, path)
+    model_el = root if root.tag == "model" else root.find("model")
+    if model_el is None and root.find("light") is not None:
+        return None  # a light model (Gazebo's sun): nothing to collide with
+    if model_el is None:
+        kind = "a world, not a model" if root.find("world") is not None else "no <model>"
+        ctx.note("include", "warning", f"{resolved.uri} ({path}) holds {kind}; nothing included", where,
+                 "include a model folder (model.config + model.sdf)")
+        return None
+    ctx.include_stack.append(path)
+    try:
+        frames.scope = f"model '{name or model_el.get('name')}'"
+        model = read_model(ctx, model_el, inc, parent_static, frames, name=name, static=static)
+    finally:
+        ctx.include_stack.pop()
+    model.pose, _ = read_pose(ctx, model_el, inc)
+    return model

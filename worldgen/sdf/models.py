@@ -1,0 +1,137 @@
+"""Reading a scope (the world, or a model's body) into the model tree: nested models, includes, links and their
+collisions, with every pose resolved through the scope's :class:`~.frames.Frames`."""
+
+from __future__ import annotations
+
+from typing import List, Optional, Tuple
+
+from lxml import etree
+
+from ..core import poses
+from .context import ReadContext, SdfFile
+from .frames import Frames
+from .includes import read_include
+from .shapes import read_geometry
+from .tree import Collision, Link, Model
+from .values import check_unique, children, read_bool, read_pose
+
+
+def read_scope(ctx: ReadContext, el, f: SdfFile, model: Optional[Model], label: str, static: bool,
+               frames: Optional[Frames] = None) -> List[Model]:
+    """Read the links, nested models and includes directly under ``el``; returns the nested models.
+
+    ``model`` receives the links (None at world level). Poses are resolved through the scope's frames.
+    """
+    frames = frames or Frames(ctx, label)
+    nested: List[Tuple[Model, int]] = []                  # with their frame entries
+    links: List[Tuple[Link, etree._Element, int]] = []
+    for child in children(el):
+        tag = child.tag
+        if tag == "model":
+            sub_frames = Frames(ctx, f"model '{child.get('name')}'")
+            sub = read_model(ctx, child, f, static, sub_frames)
+            pose, rel = read_pose(ctx, child, f)
+            nested.append((sub, frames.add(sub.name, pose, rel, f.where(child))))
+            frames.children.setdefault(sub.name, sub_frames)
+        elif tag == "include":
+            sub_frames = Frames(ctx, "an included model")
+            found = read_include(ctx, child, f, static, sub_frames, read_model)
+            if found is not None:
+                sub, pose, rel = found
+                nested.append((sub, frames.add(sub.name, pose, rel, f.where(child))))
+                frames.children.setdefault(sub.name, sub_frames)
+        elif tag == "link" and model is not None:
+            pose, rel = read_pose(ctx, child, f)
+            link = Link(child.get("name") or "link", pose)
+            links.append((link, child, frames.add(link.name, pose, rel, f.where(child))))
+        elif tag == "joint" and model is not None:
+            pose, rel = read_pose(ctx, child, f)
+            frames.add(child.get("name") or "", pose, rel or child.findtext("child", "").strip() or None,
+                       f.where(child))
+        elif tag == "frame":
+            pose, rel = read_pose(ctx, child, f)
+            frames.add(child.get("name") or "", pose, rel or child.get("attached_to") or None, f.where(child))
+        elif tag == "population":
+            _population(ctx, child, f)
+        elif tag == "actor":
+            ctx.note("structure", "info", f"actor '{child.get('name')}' ignored (animated; not an obstacle "
+                     "the reader can place)", f.where(child))
+    check_unique(ctx, [m.name for m, _ in nested], f"models in {label}", f.where(el))
+    if model is not None:
+        check_unique(ctx, [link.name for link, _, _ in links], f"links in model '{model.name}'", f.where(el))
+    for sub, entry in nested:
+        sub.pose = frames.place(entry)
+    for link, link_el, entry in links:
+        link.pose = frames.place(entry)
+        read_link(ctx, link, link_el, f, model, frames)
+        model.links.append(link)
+    return [m for m, _ in nested]
+
+
+def read_model(ctx: ReadContext, el, f: SdfFile, parent_static: bool, frames: Frames, *,
+               name: Optional[str] = None, static: Optional[bool] = None) -> Model:
+    """A ``<model>`` element and everything in it (its own pose is set by the parent scope)."""
+    name = name or el.get("name") or "model"
+    own_static = read_bool(ctx, el.find("static"), f, False) if static is None else static
+    model = Model(name, poses.IDENTITY, parent_static or own_static, f.where(el))
+    model.models = read_scope(ctx, el, f, model, f"model '{name}'", model.static, frames)
+    return model
+
+
+def read_link(ctx: ReadContext, link: Link, el, f: SdfFile, model: Model, frames: Frames) -> None:
+    """The collisions of ``<link>`` ``el`` into ``link`` (its pose already placed); a finding for a link that
+    shows a visual but has nothing to collide with."""
+    collisions = children(el, "collision")
+    check_unique(ctx, [c.get("name") or "" for c in collisions],
+                 f"collisions in {model.name}/{link.name}", f.where(el))
+    for c in collisions:
+        name = c.get("name") or "collision"
+        pose, rel = read_pose(ctx, c, f)
+        if rel and rel != link.name:
+            frame = frames.resolve(rel)
+            if frame is None:
+                ctx.note("pose", "warning", f"collision {model.name}/{link.name}/{name} has relative_to="
+                         f"'{rel}', no frame of that name; treated as relative to its link", f.where(c))
+            else:
+                pose = poses.inverse(link.pose) @ frame @ pose
+        label = f"{model.name}/{link.name}/{name}"
+        geometry = c.find("geometry")
+        if geometry is None:
+            ctx.note("structure", "warning", f"collision {label} has no <geometry>; skipped", f.where(c),
+                     "give it a <geometry> (box, cylinder, sphere or mesh)")
+            continue
+        shape = read_geometry(ctx, geometry, f, label)
+        if shape is not None:
+            link.collisions.append(Collision(name, pose, shape))
+    visuals = children(el, "visual")
+    if visuals and not collisions:
+        heights = [visual_height(v) for v in visuals]
+        tall = any(h is None or h >= 0.05 for h in heights)
+        ctx.note("collision", "warning" if tall else "info",
+                 f"link {model.name}/{link.name} has a <visual> but no <collision>: Gazebo lets the robot "
+                 "drive through it and the LiDAR does not see it", f.where(el),
+                 "add a <collision> with the same geometry as the visual" if tall else None)
+
+
+def visual_height(visual) -> Optional[float]:
+    """How tall a visual is (None when unknown: a mesh, or numbers that do not parse)."""
+    try:
+        box = visual.findtext("geometry/box/size")
+        if box is not None:
+            return float(box.split()[2])
+        length = visual.findtext("geometry/cylinder/length")
+        if length is not None:
+            return float(length)
+        radius = visual.findtext("geometry/sphere/radius")
+        return 2 * float(radius) if radius is not None else None
+    except (ValueError, IndexError):
+        return None
+
+
+def _population(ctx: ReadContext, el, f: SdfFile) -> None:
+    inner = el.find("model")
+    count = (el.findtext("model_count") or "?").strip()
+    what = f"model '{inner.get('name')}'" if inner is not None else "a model"
+    ctx.note("structure", "warning", f"<population> '{el.get('name')}' ({count} copies of {what}) is not "
+             "expanded: Gazebo scatters those models at run time, so they are not in the scene", f.where(el),
+             "place the copies as ordinary <model>s if the robot must avoid them")

@@ -1,0 +1,93 @@
+"""One ``<geometry>`` becomes Shape keyword arguments: box, cylinder, sphere, plane, or a mesh loaded with trimesh
+(through the read's mesh cache). Meshes that cannot be found are reported once per URI, at the end of the read."""
+
+from __future__ import annotations
+
+from typing import Optional
+
+import numpy as np
+
+from .context import ReadContext, SdfFile
+from .resolve import uri_fix
+from .values import children, fmt, read_floats
+
+
+def read_geometry(ctx: ReadContext, geometry, f: SdfFile, label: str) -> Optional[dict]:
+    """Shape keyword arguments for one ``<geometry>``; None (with a finding when it matters) when unusable."""
+    kinds = children(geometry)
+    if not kinds:
+        ctx.note("structure", "warning", f"collision {label} has an empty <geometry>; skipped",
+                 f.where(geometry), "put a <box>, <cylinder>, <sphere> or <mesh> in it")
+        return None
+    g = kinds[0]
+    where = f.where(g)
+    if g.tag == "box":
+        size = read_floats(ctx, g.findtext("size"), 3, (1.0, 1.0, 1.0), f, g, f"box size of {label}")
+        if min(size) <= 0:
+            return _bad_size(ctx, f"box {label} has size {fmt(size)}: every side must be positive", where)
+        return {"kind": "box", "size": size}
+    if g.tag == "cylinder":
+        radius = read_floats(ctx, g.findtext("radius"), 1, (1.0,), f, g, f"cylinder radius of {label}")[0]
+        length = read_floats(ctx, g.findtext("length"), 1, (1.0,), f, g, f"cylinder length of {label}")[0]
+        if radius <= 0 or length <= 0:
+            return _bad_size(ctx, f"cylinder {label} has radius {radius:g} and length {length:g}: both must be "
+                             "positive", where)
+        return {"kind": "cylinder", "radius": radius, "length": length}
+    if g.tag == "sphere":
+        radius = read_floats(ctx, g.findtext("radius"), 1, (1.0,), f, g, f"sphere radius of {label}")[0]
+        if radius <= 0:
+            return _bad_size(ctx, f"sphere {label} has radius {radius:g}: it must be positive", where)
+        return {"kind": "sphere", "radius": radius}
+    if g.tag == "plane":
+        normal = np.array(read_floats(ctx, g.findtext("normal"), 3, (0.0, 0.0, 1.0), f, g, f"normal of {label}"))
+        norm = float(np.linalg.norm(normal))
+        if norm == 0:
+            return _bad_size(ctx, f"plane {label} has a zero normal", where)
+        return {"kind": "plane", "normal": tuple(float(v) for v in normal / norm)}
+    if g.tag == "mesh":
+        return read_mesh(ctx, g, f, label)
+    if g.tag == "empty":
+        return None
+    ctx.note("geometry", "warning", f"collision {label} uses <{g.tag}> geometry, which the reader does not "
+             "support; skipped", where, "use box, cylinder, sphere or mesh geometry for obstacles")
+    return None
+
+
+def _bad_size(ctx: ReadContext, message: str, where: str) -> None:
+    ctx.note("sizes", "error", message + "; the shape is skipped", where,
+             "give the shape a real size (metres, greater than zero)")
+    return None
+
+
+def read_mesh(ctx: ReadContext, g, f: SdfFile, label: str) -> Optional[dict]:
+    """A ``<mesh>``: its vertices and faces, scaled; None when it has no URI, cannot be found or loaded."""
+    uri = (g.findtext("uri") or "").strip()
+    if not uri:
+        ctx.note("mesh", "warning", f"mesh of {label} has no <uri>; skipped", f.where(g),
+                 "add <uri>model://MODEL/meshes/FILE</uri>")
+        return None
+    scale = read_floats(ctx, g.findtext("scale"), 3, (1.0, 1.0, 1.0), f, g, f"mesh scale of {label}")
+    if min(scale) <= 0:
+        return _bad_size(ctx, f"mesh {label} has scale {fmt(scale)}: every factor must be positive", f.where(g))
+    if g.find("submesh") is not None:
+        ctx.note("mesh", "info", f"mesh {label} names a <submesh>; the whole mesh is used", f.where(g))
+    resolved = ctx.resolver.resolve(uri, f.dir, want_dir=False)
+    if resolved.path is None:
+        entry = ctx.missing_meshes.setdefault(uri, [resolved.reason, uri_fix(uri, resolved), f.where(g), []])
+        entry[3].append(label)
+        return None
+    try:
+        vertices, faces = ctx.meshes.load(resolved.path, scale)
+    except ValueError as err:
+        ctx.note("mesh", "warning", f"mesh {resolved.path} of {label} {err}; skipped", f.where(g),
+                 "re-export the mesh as .dae, .stl or .obj")
+        return None
+    return {"kind": "mesh", "vertices": vertices, "faces": faces}
+
+
+def report_missing_meshes(ctx: ReadContext) -> None:
+    """One finding per mesh URI that could not be found, naming the collisions skipped for it."""
+    for uri, (reason, fix, where, labels) in ctx.missing_meshes.items():
+        shown = ", ".join(labels[:3]) + (f" and {len(labels) - 3} more" if len(labels) > 3 else "")
+        ctx.note("mesh", "warning", f"mesh {uri} not found ({reason}); {len(labels)} collision"
+                 f"{'s' if len(labels) > 1 else ''} skipped: {shown}", where, fix)
