@@ -63,6 +63,7 @@ def _imports(path: Path, top_level_only: bool = False) -> set[str]:
                 if (PACKAGE.parent / Path(*f"{target}.{alias.name}".split("."))).with_suffix(".py").exists() or \
                         (PACKAGE.parent / Path(*f"{target}.{alias.name}".split(".")) / "__init__.py").exists():
                     found.add(f"{target}.{alias.name}")
+    found.discard(name)   # "from . import build" in a package's __init__ names its modules, not itself
     return {m if m.startswith("worldgen") else m.split(".")[0] for m in found if m}
 
 
