@@ -14,7 +14,7 @@ from shapely.ops import unary_union
 
 from worldgen.core.errors import SpecError
 from worldgen.geometry.building import JOIN_TOLERANCE, build_geometry
-from worldgen.spec.load import Material, Obstacle, Opening, Room, Segment, Spec, WallStyle
+from worldgen.spec.model import Material, Obstacle, Opening, Room, Segment, Spec, WallStyle
 
 STYLE = WallStyle()
 T = STYLE.thickness

@@ -29,8 +29,8 @@ import math
 from dataclasses import dataclass, field
 
 from ..core.errors import SpecError
-from ..spec.load import Material, Obstacle, Opening, Point, RobotPose, Spec, WallStyle
-from ..spec.load import _m   # lengths in messages, written as the spec's own messages write them
+from ..spec.messages import metres as _m   # lengths in messages, written as the spec's own messages write them
+from ..spec.model import Material, Obstacle, Opening, Point, RobotPose, Spec, WallStyle
 
 EPS = 1e-3              # two points closer than this are one point; a point this close to a line lies on it
 ANG_EPS = 1e-4          # edges whose directions differ less than this (radians) are parallel
