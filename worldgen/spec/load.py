@@ -15,7 +15,6 @@ from pathlib import Path
 from ..core.errors import SpecError
 from . import values
 from .grid_spec import read_grid, read_grid_file
-from .maps import IMAGE_SUFFIXES, is_map_yaml, map_spec, spec_map_parts
 from .messages import check_name, describe
 from .model import TOP_KEYS, RobotPose, Spec, WallStyle
 from .nodes import Node, compose
@@ -42,6 +41,8 @@ def load_spec(path: str | Path) -> Spec:
     file), or a ROS map_server map's YAML (a YAML with an ``image`` key: its occupied pixels become walls, the world
     is named after the file; see :mod:`worldgen.spec.maps`). Raises SpecError naming the file and line of the first
     problem."""
+    from .maps import IMAGE_SUFFIXES   # imported when a spec is read, not when worldgen starts
+
     path = Path(path)
     if path.suffix.lower() in IMAGE_SUFFIXES:
         raise SpecError("is an image, not a spec", path=path,
@@ -87,6 +88,8 @@ def read_spec(src: Source, root: Node | None) -> Spec:
     if not isinstance(root.value, dict):
         src.fail(f"a spec must be a block of keys (name:, walls:, rooms: …), not {describe(root.value)}",
                  root.line, hint="start from the one `worldgen new NAME` writes")
+    from .maps import is_map_yaml, map_spec, spec_map_parts   # imported when a spec is read, not at start-up
+
     if is_map_yaml(root.value):   # a ROS map_server map's own YAML
         return map_spec(src, root)
     keys = values.mapping(src, root, "the spec", TOP_KEYS, required=("name",))

@@ -4,7 +4,6 @@ reader (:mod:`worldgen.spec.maps`) and the geometry's own checks."""
 
 from __future__ import annotations
 
-import difflib
 import re
 
 from ..core.errors import SpecError
@@ -60,6 +59,8 @@ def describe_sized(value: object) -> str:
 
 def did_you_mean(word: str, choices, cutoff: float = 0.6) -> str:
     """``"; did you mean 'X'?"`` for the choice nearest ``word`` (difflib), or "" when none is near."""
+    import difflib   # only a message needs it: not imported at start-up
+
     close = difflib.get_close_matches(word, choices, n=1, cutoff=cutoff)
     return f"; did you mean '{close[0]}'?" if close else ""
 

@@ -8,10 +8,8 @@ The parts of a spec made of these are read in :mod:`.walls`, :mod:`.objects`, :m
 
 from __future__ import annotations
 
-import difflib
 import math
 import re
-from dataclasses import dataclass
 from typing import NoReturn
 
 from ..core.errors import SpecError
@@ -24,11 +22,13 @@ from .nodes import Node
 EXPONENT_NUMBER = re.compile(r"[-+]?(\d+(\.\d*)?|\.\d+)[eE][-+]?\d+\Z")
 
 
-@dataclass(frozen=True)
 class Source:
     """The file being read (``path``, None for text given without one): every check names it when it fails."""
 
-    path: str | None
+    __slots__ = ("path",)
+
+    def __init__(self, path: str | None):
+        self.path = path
 
     def fail(self, message: str, line: int | None, hint: str | None = None) -> NoReturn:
         raise SpecError(message, path=self.path, line=line, hint=hint)
@@ -169,6 +169,8 @@ def script(src: Source, node: Node, what: str) -> str:
                                                      "colour [r, g, b, a]")
     if name in GAZEBO_MATERIALS:
         return name
+    import difflib   # only a name that is not a stock material needs it: not imported at start-up
+
     full = name if "/" in name else f"Gazebo/{name}"
     close = difflib.get_close_matches(full, GAZEBO_MATERIALS, n=1, cutoff=0.75)
     folded = {m.lower(): m for m in GAZEBO_MATERIALS}
