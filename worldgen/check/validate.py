@@ -28,7 +28,8 @@ from .checks import (GEOMETRIC_CHECKS, SDFORMAT_ABSENT, SIM_CHECKS, check_enclos
 from ..core.errors import InputError, SpecError, WorldFileError
 from ..core.findings import Finding
 from .report import Result
-from ..spec.load import ROBOT_MODELS, SPEC_SUFFIXES, spec_beside
+from ..spec.load import spec_beside
+from ..spec.model import ROBOT_MODELS, SPEC_SUFFIXES
 
 LAUNCH_SUFFIXES = (".launch", ".launch.xml")
 NO_HIT_CHOICES = ("inf", "zero")
