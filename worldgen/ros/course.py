@@ -42,7 +42,7 @@ def course_files(maintainer: str | None = None) -> PackageFiles:
 
     world_file, world_text, spawn = world_from_spec(examples_dir() / "enclosed_room.yaml")
     worlds = {world_file: world_text}
-    launches = {default_launch_name(world_file): launch_xml(world_file, WORLD_PACKAGE, "env", spawn)}
+    launches = {default_launch_name(world_file): launch_xml(world_file, WORLD_PACKAGE, "optenv", spawn)}
     world_pkg = package_files(
         _request(WORLD_PACKAGE, "Class meeting 02: a custom Gazebo world (a closed room) and the launch file that "
                                 "puts a TurtleBot3 in it", maintainer), worlds, launches)
@@ -50,8 +50,8 @@ def course_files(maintainer: str | None = None) -> PackageFiles:
     def lab(name: str, script: str, params: dict, description: str) -> PackageFiles:
         node = parse_node(f"{name}/{script}")
         launch_name = f"{node.name}.launch"
-        launch = launch_xml(world_file, WORLD_PACKAGE, "env", spawn, nodes=[node],
-                            launch_name=launch_name)
+        launch = launch_xml(world_file, WORLD_PACKAGE, "optenv", spawn, nodes=[node],
+                            launch_name=launch_name, home=name)
         code = render_template(f"nodes/{script}.j2", package=name, **params)
         return package_files(_request(name, description, maintainer, exec_only=[WORLD_PACKAGE]),
                              launches={launch_name: launch}, scripts={script: code})

@@ -226,7 +226,7 @@ def package_files(req: PackageRequest, worlds: Mapping[str, str] | None = None,
     return PackageFiles(dict(sorted(files.items())), set(script_paths))
 
 
-def world_from_spec(spec_path: str | Path, model: str = "env") -> tuple[str, str, tuple[float, ...]]:
+def world_from_spec(spec_path: str | Path, model: str = "optenv") -> tuple[str, str, tuple[float, ...]]:
     """Build the world of the spec at ``spec_path``: its file name ``NAME.world``, its SDF text and the robot's
     spawn pose (x, y, z, yaw): the spec's robot pose, or without one the deepest point of the room."""
     from ..sdf.writer import spec_world_sdf
@@ -239,7 +239,7 @@ def world_from_spec(spec_path: str | Path, model: str = "env") -> tuple[str, str
     return f"{spec.name}.world", world_text, spawn
 
 
-def world_package_files(spec_path: str | Path, package: str, model: str = "env"
+def world_package_files(spec_path: str | Path, package: str, model: str = "optenv"
                         ) -> tuple[dict[str, str], dict[str, str]]:
     """(worlds, launches) for a package ``package`` holding the spec's world: ``NAME.world`` and
     ``turtlebot3_in_NAME.launch``."""
