@@ -181,9 +181,10 @@ def run_node(script: Path, params: list[str], env: dict[str, str], driver: str, 
 
 def test_stop_at_wall_on_a_real_roscore(workspace, roscore):
     """Fed LaserScans, the node drives at max_speed while the front reads far, inf (Gazebo) or 0 (the real
-    LDS-01), proportionally slower near the target, and publishes a zero Twist once within it."""
+    LDS-01), proportionally slower near the target, and publishes a zero Twist once within it, and holds
+    (0.45 m after stopping does not start it again)."""
     script = workspace / "src" / "intro_robo" / "lab_a_stop_at_wall" / "scripts" / "stop_at_wall.py"
-    fronts = ["2.0", "inf", "0", "nan", "0.6", "0.5", "0.35", "0.2", "3.0"]
+    fronts = ["2.0", "inf", "0", "nan", "0.6", "0.5", "0.35", "0.45", "0.2", "3.0"]
     answers = run_node(script, ["_target_distance:=0.4", "_kp:=1.0", "_max_speed:=0.15"], roscore, SCAN_DRIVER,
                        fronts)
     linear = [a["linear"] for a in answers]
@@ -191,8 +192,8 @@ def test_stop_at_wall_on_a_real_roscore(workspace, roscore):
     assert linear[:4] == [0.15] * 4                      # far, inf, 0 and NaN: full speed
     assert linear[4] == pytest.approx(0.15, abs=1e-6)    # kp · 0.2 = 0.2, capped at 0.15
     assert linear[5] == pytest.approx(0.1, abs=1e-6)     # kp · 0.1
-    assert linear[6:8] == [0.0, 0.0]                     # within the target distance: stop
-    assert linear[8] == 0.15                             # the wall is gone: drive again
+    assert linear[6:9] == [0.0, 0.0, 0.0]                # within the target distance: stop, and hold
+    assert linear[9] == 0.15                             # the wall is gone: drive again
 
 
 def test_spin_in_circles_on_a_real_roscore(workspace, roscore):
