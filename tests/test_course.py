@@ -119,25 +119,38 @@ def test_front_distance_ignores_inf_zero_and_nan(stop_at_wall):
     assert stop_at_wall.front_distance(scan(centred, angle_min=-math.pi), half) == 0.7
 
 
-def test_forward_speed_is_proportional_and_capped(stop_at_wall):
-    speed = stop_at_wall.forward_speed
-    assert speed(None, 0.5, 0.5, 0.2) == 0.2
-    assert speed(3.0, 0.5, 0.5, 0.2) == 0.2
-    assert speed(0.8, 0.5, 0.5, 0.2) == pytest.approx(0.15)
-    assert speed(0.5, 0.5, 0.5, 0.2) == 0.0 and speed(0.3, 0.5, 0.5, 0.2) == 0.0
+def test_the_node_runs_drives_law(stop_at_wall):
+    """The generated node's StopLaw and worldgen drive's (worldgen.core.stoplaw) give the same command for every
+    scan of the same runs: noisy approaches, nothing seen, a wall that moves away, PID gains."""
+    import random
+
+    from worldgen.core import stoplaw
+
+    rng = random.Random(7)
+    for run in range(40):
+        gains = {"kp": rng.choice([0.1, 0.5, 1.2, 3.0]), "ki": rng.choice([0.0, 0.2]),
+                 "kd": rng.choice([0.0, 0.3]), "max_speed": rng.choice([0.15, 0.22]),
+                 "stop_band": rng.choice([0.0, 0.01, 0.05])}
+        target = rng.choice([0.3, 0.5])
+        node = stop_at_wall.StopLaw(target_distance=target, **gains)
+        ours = stoplaw.StopLaw(target=target, **gains)
+        front = rng.uniform(0.3, 3.0)
+        for step in range(60):
+            front = max(0.15, front - rng.uniform(-0.02, 0.08))
+            reading = None if rng.random() < 0.05 else front + rng.gauss(0.0, 0.01)
+            dt = 0.0 if step == 0 else 0.2
+            assert node.step(reading, dt) == ours.step(reading, dt), (run, step)
+            assert node.holding == ours.holding
 
 
-
-def test_unwritable_workspace_is_one_line_and_force_replaces_a_file(tmp_path):
-    runner = CliRunner()
-    (tmp_path / "blocked").mkdir()
-    (tmp_path / "blocked" / "src").write_text("a file where the source folder goes\n")
-    blocked = runner.invoke(main, ["course", "--workspace", str(tmp_path / "blocked")])
-    assert blocked.exit_code == 2 and "Traceback" not in blocked.output
-    assert blocked.output.splitlines() == [f"worldgen: error: cannot write {tmp_path / 'blocked' / 'src'}: File "
-                                           "exists (check that the output folder can be created and written to)"]
-    (tmp_path / "ws" / "src").mkdir(parents=True)
-    (tmp_path / "ws" / "src" / "intro_robo").write_text("not a folder\n")
-    forced = runner.invoke(main, ["course", "--workspace", str(tmp_path / "ws"), "--force"])
-    assert forced.exit_code == 0, forced.output
-    assert sorted(p.name for p in (tmp_path / "ws" / "src" / "intro_robo").iterdir()) == PACKAGES
+def test_the_law_never_reverses_and_holds_through_noise(stop_at_wall):
+    law = stop_at_wall.StopLaw(target_distance=0.5, kp=0.5, ki=0.0, kd=0.0, max_speed=0.22, stop_band=0.01)
+    assert law.step(None, 0.0) == 0.22 and law.step(3.0, 0.2) == 0.22       # nothing seen, far: full speed
+    assert law.step(0.8, 0.2) == pytest.approx(0.15)                          # kp · 0.3
+    assert law.step(0.505, 0.2) == 0.0 and law.holding                        # within the band: stop
+    for noisy in (0.52, 0.55, 0.6, 0.3):                                      # noise cannot start it again
+        assert law.step(noisy, 0.2) == 0.0
+    assert law.step(0.7, 0.2) == pytest.approx(0.1) and not law.holding      # moved 0.2 m away: drive again
+    pid = stop_at_wall.StopLaw(target_distance=0.5, kp=0.0, ki=0.0, kd=10.0, max_speed=0.22, stop_band=0.01)
+    pid.step(1.0, 0.0)
+    assert pid.step(1.5, 0.2) == 0.22 and pid.step(1.0, 0.2) == 0.0          # de/dt < 0: clamped at 0, not back

@@ -36,7 +36,11 @@ def test_launch_xml_has_the_class_shape():
     text = launch_xml("enclosed_room.world", "class_meeting_02", spawn=(1.25, -0.5, 0.0, 1.5708))
     root = etree.fromstring(text.encode())
     args = {a.get("name"): a for a in root.findall("arg")}
-    assert args["model"].get("default") == "$(env TURTLEBOT3_MODEL)"
+    assert args["model"].get("default") == "$(optenv TURTLEBOT3_MODEL burger)"   # works in a fresh shell
+    assert etree.fromstring(launch_xml("w.world", "p", model="env").encode()).find("arg[@name='model']").get(
+        "default") == "$(env TURTLEBOT3_MODEL)"   # the class's exact text, on request
+    assert "Start it with: roslaunch class_meeting_02 turtlebot3_in_enclosed_room.launch" in text
+    assert "roslaunch lab_a turtlebot3_in_w.launch" in launch_xml("w.world", "p", home="lab_a")
     assert args["model"].get("doc") == "model type [burger, waffle, waffle_pi]"
     assert {k: args[k].get("default") for k in ("x_pos", "y_pos", "z_pos", "yaw")} == \
         {"x_pos": "1.25", "y_pos": "-0.5", "z_pos": "0.0", "yaw": "1.5708"}
@@ -86,11 +90,18 @@ def test_numbers_nodes_and_spawn_values():
     for bad in ("pkg", "pkg/", "/type", "pkg/type:9name", "pkg/ty pe"):
         with pytest.raises(InputError):
             parse_node(bad)
-    assert parse_spawn("1, -2", z=True) == (1.0, -2.0, 0.0, 0.0)
-    assert parse_spawn("1,2,0.1,1.57", z=True) == (1.0, 2.0, 0.1, 1.57)
-    for bad in ("1", "a,b", "1,2,3,4,5", "nan,1"):
-        with pytest.raises(InputError):
-            parse_spawn(bad, z=True)
+    assert parse_spawn("1, -2") == (1.0, -2.0, 0.0)
+    assert parse_spawn("1,2,1.57") == (1.0, 2.0, 1.57)
+    assert parse_spawn("0,0,-6.28") == (0.0, 0.0, -6.28)
+    for bad, words in (("1", "1 numbers, not 2 or 3"), ("a,b", "must be numbers"),
+                       ("1,2,3,4", "4 numbers, not 2 or 3 \\(there is no Z"), ("1,2,3,4,5", "5 numbers"),
+                       ("nan,1", "finite"), ("1,inf", "finite"), ("1,2,90", "probably degrees")):
+        with pytest.raises(InputError, match=words) as err:
+            parse_spawn(bad)
+        assert "X,Y,YAW" in err.value.hint or "in radians" in err.value.hint
+    with pytest.raises(InputError) as err:
+        parse_spawn("1,2,-90")
+    assert "-1.571 for -90°" in err.value.hint
 
 
 # ----------------------------------------------------------------------------------------------------- spawn
@@ -179,18 +190,24 @@ def test_launch_command(corpus, tmp_path):
     assert [n.full_name for n in info.nodes] == ["/spawn_urdf", "/stop_at_wall"]
     # again: refused without --force, and nothing changes
     before = written.read_bytes()
-    again = runner.invoke(main, ["launch", str(pkg / "worlds" / "room.world"), "--spawn", "-5.5,-1,0,0.5"])
+    again = runner.invoke(main, ["launch", str(pkg / "worlds" / "room.world"), "--spawn", "-5.5,-1,0.5"])
     assert again.exit_code == 2 and "exists" in again.output and written.read_bytes() == before
-    forced = runner.invoke(main, ["launch", str(pkg / "worlds" / "room.world"), "--spawn", "-5.5,-1,0,0.5",
+    forced = runner.invoke(main, ["launch", str(pkg / "worlds" / "room.world"), "--spawn", "-5.5,-1,0.5",
                                   "--force"])
     assert forced.exit_code == 0, forced.output
-    assert read_launch(written, environ={}).spawn == (-5.5, -1.0, 0.0, 0.5)
+    assert "yaw 0.5" in forced.output
+    info = read_launch(written, environ={})   # X,Y,YAW as in every command; z on the floor
+    assert info.spawn == (-5.5, -1.0, 0.0, 0.5)
+    assert info.model == "burger"   # $(optenv TURTLEBOT3_MODEL burger) with TURTLEBOT3_MODEL unset
+    assert read_launch(written, environ={"TURTLEBOT3_MODEL": "waffle"}).model == "waffle"
 
 
 @pytest.mark.parametrize("extra, words", [
     (["--model", "tank"], "Invalid value for '--model'"),
     (["--spawn", "0,0"], "outside the room"),
     (["--spawn", "x"], "bad --spawn value"),
+    (["--spawn", "-5.5,-1,0,0.5"], "4 numbers, not 2 or 3"),
+    (["--spawn", "-5.5,-1,90"], "probably degrees"),
     (["--node", "nonode"], "bad --node value"),
     (["--name", "a/b.launch"], "is a path"),
     (["--name", "my room"], "cannot be passed to roslaunch"),
@@ -228,6 +245,9 @@ def test_reader_round_trip(tmp_path):
     assert info.args["x_pos"] == "1.5" and info.args["model"] == "waffle"
     overridden = read_launch(launch, {"x_pos": "-1", "model": "burger"}, environ={}, ros_package_path=[])
     assert overridden.spawn == (-1.0, -2.0, 0.01, 3.0) and overridden.model == "burger"
+    unset = read_launch(launch, environ={}, ros_package_path=[])
+    assert unset.model == "burger" and unset.spawn == (1.5, -2.0, 0.01, 3.0)   # $(optenv ... burger)
+    launch.write_text(launch_xml("w.world", "demo", model="env", spawn=(1.5, -2.0, 0.01, 3.0)))
     unset = read_launch(launch, environ={}, ros_package_path=[])
     assert unset.model is None and unset.model_env == "TURTLEBOT3_MODEL" and unset.spawn == (1.5, -2.0, 0.01, 3.0)
 

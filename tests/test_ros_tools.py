@@ -48,6 +48,10 @@ def workspace(work) -> Path:
                  ["build", str(spec), "--package", str(src / "built_pkg")]):
         result = runner.invoke(main, args)
         assert result.exit_code == 0, (args, result.output)
+    # a node a student adds after scaffolding: the CMakeLists installs it with no edit
+    later = src / "cpp_pkg" / "scripts" / "added_later.py"
+    later.write_text("#!/usr/bin/env python3\nprint('hello')\n")
+    later.chmod(0o755)
     return src.parent
 
 
@@ -72,8 +76,10 @@ def test_catkin_make_builds_and_installs(workspace, work):
                 "share/my_world_pkg/worlds/lab_room.world", "share/built_pkg/launch/turtlebot3_in_lab_room.launch",
                 "share/intro_robo/package.xml"):
         assert (install / rel).is_file(), rel
-    for script in ("lab_a_stop_at_wall/stop_at_wall.py", "lab_a_spin_circles/spin_in_circles.py"):
+    for script in ("lab_a_stop_at_wall/stop_at_wall.py", "lab_a_spin_circles/spin_in_circles.py",
+                   "cpp_pkg/added_later.py"):   # where rosrun looks after catkin_make install
         assert (install / "lib" / script).stat().st_mode & 0o111, script
+    assert sorted(p.name for p in (install / "lib" / "cpp_pkg").iterdir()) == ["added_later.py"]
     assert not list(install.rglob(".gitkeep"))
 
 
@@ -112,6 +118,23 @@ def test_roslaunch_loads_every_launch_file_we_write(workspace, work, stubs, corp
         assert world == ours.world_path and world.is_file(), launch
         assert '<robot name="turtlebot3_burger"' in config["params"]["/robot_description"]
         assert config["params"]["/use_sim_time"] is True
+
+
+def test_the_course_launches_with_turtlebot3_model_unset(workspace, work, stubs):
+    """A new shell has no TURTLEBOT3_MODEL: roslaunch's own loader still reads every course launch file (the
+    model defaults to burger through $(optenv ...)), and each says how to start it from its own package."""
+    need_module("roslaunch")
+    course = workspace / "src" / "intro_robo"
+    launches = sorted(course.rglob("*.launch"))
+    assert len(launches) == 3
+    env = launch_env(work, stubs, workspace)
+    assert "TURTLEBOT3_MODEL" not in env
+    for launch, config in zip(launches, roslaunch_load([(launch, []) for launch in launches], env)):
+        spawn = {n["name"]: n for n in config["nodes"]}["spawn_urdf"]
+        assert "-model turtlebot3_burger " in spawn["args"], launch
+        assert '<robot name="turtlebot3_burger"' in config["params"]["/robot_description"]
+        package = launch.parent.parent.name
+        assert f"Start it with: roslaunch {package} {launch.name}" in launch.read_text()
 
 
 def test_roslaunch_overrides(workspace, work, stubs):
@@ -181,9 +204,10 @@ def run_node(script: Path, params: list[str], env: dict[str, str], driver: str, 
 
 def test_stop_at_wall_on_a_real_roscore(workspace, roscore):
     """Fed LaserScans, the node drives at max_speed while the front reads far, inf (Gazebo) or 0 (the real
-    LDS-01), proportionally slower near the target, and publishes a zero Twist once within it."""
+    LDS-01), proportionally slower near the target, and publishes a zero Twist once within it, and holds
+    (0.45 m after stopping does not start it again)."""
     script = workspace / "src" / "intro_robo" / "lab_a_stop_at_wall" / "scripts" / "stop_at_wall.py"
-    fronts = ["2.0", "inf", "0", "nan", "0.6", "0.5", "0.35", "0.2", "3.0"]
+    fronts = ["2.0", "inf", "0", "nan", "0.6", "0.5", "0.35", "0.45", "0.2", "3.0"]
     answers = run_node(script, ["_target_distance:=0.4", "_kp:=1.0", "_max_speed:=0.15"], roscore, SCAN_DRIVER,
                        fronts)
     linear = [a["linear"] for a in answers]
@@ -191,8 +215,8 @@ def test_stop_at_wall_on_a_real_roscore(workspace, roscore):
     assert linear[:4] == [0.15] * 4                      # far, inf, 0 and NaN: full speed
     assert linear[4] == pytest.approx(0.15, abs=1e-6)    # kp · 0.2 = 0.2, capped at 0.15
     assert linear[5] == pytest.approx(0.1, abs=1e-6)     # kp · 0.1
-    assert linear[6:8] == [0.0, 0.0]                     # within the target distance: stop
-    assert linear[8] == 0.15                             # the wall is gone: drive again
+    assert linear[6:9] == [0.0, 0.0, 0.0]                # within the target distance: stop, and hold
+    assert linear[9] == 0.15                             # the wall is gone: drive again
 
 
 def test_spin_in_circles_on_a_real_roscore(workspace, roscore):

@@ -222,7 +222,7 @@ def test_check_package_finds_what_breaks(tmp_path):
     (pkg / "scripts" / "go.py").chmod(0o644)
     (pkg / "worlds" / "room.world").unlink()
     launch = pkg / "launch" / "turtlebot3_in_room.launch"
-    launch.write_text(launch.read_text().replace("$(env TURTLEBOT3_MODEL)", "burgr").replace(
+    launch.write_text(launch.read_text().replace("$(optenv TURTLEBOT3_MODEL burger)", "burgr").replace(
         "</launch>", '  <node pkg="checked" type="missing.py" name="m"/>\n</launch>'))
     cmake = pkg / "CMakeLists.txt"
     cmake.write_text(cmake.read_text().replace("install(DIRECTORY launch models worlds", "install(DIRECTORY models"))

@@ -267,7 +267,6 @@ def test_exit_codes_0_and_1(tmp_path):
 def test_parse_spawn_forms():
     assert parse_spawn("1,2") == (1.0, 2.0, 0.0)
     assert parse_spawn(" -5.5, -1.0 , 1.57") == (-5.5, -1.0, 1.57)
-    assert parse_spawn("1,2,0,3.14") == (1.0, 2.0, 3.14)   # X,Y,Z,YAW as launch files write it
 
 
 # ------------------------------------------------------------------------------------ inputs and -j N

@@ -10,6 +10,7 @@ from pathlib import Path
 
 import click
 
+from ..core import stoplaw
 from ..sim.exercise import BEHAVIOURS
 from ..core.errors import EXIT_FAILED, EXIT_OK
 
@@ -35,23 +36,25 @@ class FiniteFloat(click.FloatRange):
               help="Robot model, or a .urdf/.urdf.xacro file. Default: the spec's, else burger.")
 @click.option("--spawn", default=None, metavar="X,Y[,YAW]",
               help="Spawn pose in metres and radians. Default: the spec's robot entry, else 0,0,0.")
-@click.option("--target", type=FiniteFloat(min=0.0, min_open=True), default=0.5, show_default=True,
+@click.option("--target", type=FiniteFloat(min=0.0, min_open=True), default=stoplaw.TARGET, show_default=True,
               help="Stop-at-wall: distance to stop at (m).")
 @click.option("--kp", type=FiniteFloat(), multiple=True,
-              help="Proportional gain (repeat for several runs on one plot). Default 0.5.")
+              help=f"Proportional gain (repeat for several runs on one plot). Default {stoplaw.KP:g}.")
 @click.option("--ki", type=FiniteFloat(), multiple=True,
               help="Integral gain (once for all runs, or once per run). Default 0.")
 @click.option("--kd", type=FiniteFloat(), multiple=True,
               help="Derivative gain (once for all runs, or once per run). Default 0.")
 @click.option("--duration", type=FiniteFloat(min=0.1, max=600), default=None, metavar="S",
-              help="Simulated seconds per run. Default: 20 for stop-at-wall, one full turn for spin.")
-@click.option("--max-speed", type=FiniteFloat(min=0.01, max=1.0), default=0.22, show_default=True,
+              help="Simulated seconds per run. Default: 30 for stop-at-wall, one full turn for spin.")
+@click.option("--max-speed", type=FiniteFloat(min=0.01, max=1.0), default=stoplaw.MAX_SPEED, show_default=True,
               help="Stop-at-wall: speed limit of the command (m/s; burger 0.22, waffle 0.26).")
+@click.option("--stop-band", type=FiniteFloat(min=0.0, max=1.0), default=stoplaw.STOP_BAND, show_default=True,
+              metavar="M", help="Stop-at-wall: stop, and hold, once the front distance is within M of the target.")
 @click.option("--omega", type=FiniteFloat(min=-3.0, max=3.0), default=1.0, show_default=True,
               help="Spin: turn rate (rad/s; burger at most 2.84, waffle 1.82).")
 @click.option("--rate", type=click.Choice(["5", "30"]), default="5", show_default=True,
               help="Stop-at-wall: control loop rate in Hz (the LiDAR's 5 Hz or the drive's 30 Hz).")
-@click.option("--front-angle", type=FiniteFloat(min=0.0, max=90.0), default=10.0, show_default=True,
+@click.option("--front-angle", type=FiniteFloat(min=0.0, max=90.0), default=stoplaw.FRONT_ANGLE, show_default=True,
               metavar="DEG", help="Stop-at-wall: the front distance is the nearest beam within ±DEG of ahead.")
 @click.option("--tolerance", type=FiniteFloat(min=0.0), default=0.05, show_default=True,
               help="Stop-at-wall: the run passes when it ends within this of the target (m).")
@@ -65,13 +68,14 @@ class FiniteFloat(click.FloatRange):
               help="Write the time series as CSV.")
 @click.option("--force", is_flag=True, help="Overwrite existing --plot/--csv files.")
 @click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True)
-def drive(world, behaviour, robot, spawn, target, kp, ki, kd, duration, max_speed, omega, rate, front_angle,
-          tolerance, lidar_no_hit, model_paths, plot, csv_path, force, fmt):
+def drive(world, behaviour, robot, spawn, target, kp, ki, kd, duration, max_speed, stop_band, omega, rate,
+          front_angle, tolerance, lidar_no_hit, model_paths, plot, csv_path, force, fmt):
     """Run a sensory-motor exercise in WORLD (a .world/.sdf file or a floorplan spec) and report it.
 
-    stop-at-wall drives toward the wall ahead with v = kp·e + ki·∫e + kd·de/dt (e = front LiDAR distance −
-    target, clamped to ±max-speed) and reports final distance, overshoot, settling time and contacts; spin
-    turns in place and reports the drift. Exit status: 0 every run stopped where it should without touching
+    stop-at-wall runs the generated stop_at_wall.py node's law: v = kp·e + ki·∫e + kd·de/dt (e = front LiDAR
+    distance − target) clamped to [0, max-speed], full speed when nothing is ahead, stop and hold once within
+    stop-band of the target; it reports final distance, overshoot, settling time and contacts. spin turns in
+    place and reports the drift. Exit status: 0 every run stopped where it should without touching
     anything, 1 a run touched something or missed the target band, 2 bad input.
     """
     from ..core.errors import InputError, WorldgenError
@@ -97,7 +101,8 @@ def drive(world, behaviour, robot, spawn, target, kp, ki, kd, duration, max_spee
         "world": str(world), "spec_robot": spec_robot, "behaviour": behaviour,
         "robot": _robot_arg(robot), "spawn": list(parse_spawn(spawn)) if spawn is not None else None,
         "gains": gain_sets(kp, ki, kd), "target": target, "duration": duration, "max_speed": max_speed,
-        "omega": omega, "rate": float(rate), "front_angle": front_angle, "no_hit": lidar_no_hit, "tolerance": tolerance}
+        "omega": omega, "rate": float(rate), "front_angle": front_angle, "no_hit": lidar_no_hit, "tolerance": tolerance,
+        "stop_band": stop_band}
     try:
         result = run_on_scene("worldgen.sim.exercise:drive_exercise", scene, request, SIM_TIMEOUT)
     except (SimCrashed, SimError) as err:
@@ -132,7 +137,7 @@ def gain_sets(kp: tuple, ki: tuple, kd: tuple) -> list[dict]:
 
     runs = max(len(kp), len(ki), len(kd), 1)
     columns = {}
-    for name, values, default in (("kp", kp, 0.5), ("ki", ki, 0.0), ("kd", kd, 0.0)):
+    for name, values, default in (("kp", kp, stoplaw.KP), ("ki", ki, 0.0), ("kd", kd, 0.0)):
         if len(values) not in (0, 1, runs):
             raise InputError(f"--{name} is given {len(values)} times for {runs} runs",
                              hint=f"give --{name} once (used for every run) or once per run")
@@ -198,7 +203,9 @@ def _failures(run: dict) -> list[str]:
         reasons.append("no wall ahead at the end" if run["final_distance"] is None else
                        f"ended {run['final_distance'] - run['target']:+.3f} m from the target")
     if not run["stopped"]:
-        reasons.append("still moving at the end")
+        reasons.append("still moving at the end" if run.get("stop_time") is not None else
+                       f"never came within {run.get('stop_band', 0):g} m of the target to stop (try a larger "
+                       "--kp or a longer --duration)")
     return reasons
 
 

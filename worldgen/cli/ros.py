@@ -19,11 +19,13 @@ from ..ros.launch import MODEL_CHOICES
 @click.option("--package", "package", metavar="PKG",
               help="The package whose worlds/ folder holds WORLD (default: the package around WORLD).")
 @click.option("--name", metavar="FILE", help="Launch file name (default: turtlebot3_in_<world>.launch).")
-@click.option("--model", type=click.Choice(MODEL_CHOICES), default="env", show_default=True,
-              help="The default robot model; env means $(env TURTLEBOT3_MODEL), as in the class.")
-@click.option("--spawn", metavar="X,Y[,Z[,YAW]]",
-              help="Spawn pose in metres and radians (default: the spec's robot pose, else the deepest free "
-                   "point of the room).")
+@click.option("--model", type=click.Choice(MODEL_CHOICES), default="optenv", show_default=True,
+              help="The launch file's default robot model: optenv writes $(optenv TURTLEBOT3_MODEL burger) "
+                   "(TURTLEBOT3_MODEL when it is set, else burger); env the class's exact $(env TURTLEBOT3_MODEL) "
+                   "(roslaunch fails when it is unset); or a fixed model.")
+@click.option("--spawn", metavar="X,Y[,YAW]",
+              help="Spawn pose in metres and radians, on the floor (default: the spec's robot pose, else the "
+                   "deepest free point of the room).")
 @click.option("--node", "nodes", multiple=True, metavar="PKG/TYPE[:NAME]",
               help="Also start this node (repeatable), e.g. lab_a_stop_at_wall/stop_at_wall.py.")
 @click.option("-o", "--output", type=click.Path(file_okay=False, path_type=Path),
@@ -37,7 +39,7 @@ def launch_command(world: Path, package: str | None, name: str | None, model: st
     from ..core.fsio import write_file
     from ..core.numbers import format_number
     from ..ros.launch import default_launch_name, launch_xml, package_name_of, parse_node
-    from ..core.spawnpose import parse_spawn
+    from ..core.spawnpose import floor_pose, parse_spawn
     from ..ros.spawn import spawn_for_world
 
     node_refs = [parse_node(n) for n in nodes]
@@ -57,7 +59,8 @@ def launch_command(world: Path, package: str | None, name: str | None, model: st
     if not re.fullmatch(r"[A-Za-z0-9_][A-Za-z0-9_.+-]*", launch_name):
         raise InputError(f"--name {name!r} cannot be passed to roslaunch",
                          hint="name the launch file with letters, digits, '_', '-' and '.' only")
-    pose, source = spawn_for_world(world, model, parse_spawn(spawn, z=True) if spawn else None)
+    given = floor_pose(parse_spawn(spawn)) if spawn is not None else None
+    pose, source = spawn_for_world(world, model, given)
     text = launch_xml(world.name, package, model, pose, node_refs, launch_name=launch_name)
     folder = output if output is not None else (world_pkg / "launch" if world_pkg is not None else Path("."))
     target = write_file(folder / launch_name, text, force=force)

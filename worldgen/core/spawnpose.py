@@ -8,29 +8,33 @@ from typing import Tuple
 from .errors import InputError
 
 Pose = Tuple[float, float, float, float]   # x, y, z, yaw
-_SPAWN_HINTS = {   # --spawn forms → how to write them (see parse_spawn)
-    True: "write --spawn X,Y or X,Y,Z or X,Y,Z,YAW in metres and radians, e.g. --spawn 1.0,-0.5,0,1.57",
-    False: "write --spawn X,Y or X,Y,YAW in metres and radians, e.g. --spawn -5.5,-1.0,1.57",
-}
+SPAWN_FORMS = "X,Y[,YAW]"
+_HINT = ("write --spawn X,Y or X,Y,YAW in metres and radians (the robot stands on the floor), "
+         "e.g. --spawn -5.5,-1.0,1.57")
 
 
-def parse_spawn(text: str, z: bool = False) -> tuple[float, ...]:
-    """A ``--spawn`` value (metres, radians) → pose; InputError (with the forms to write) for anything else.
-
-    ``z`` (``worldgen launch``, which writes a launch file's pose): ``X,Y[,Z[,YAW]]`` → (x, y, z, yaw).
-    Otherwise (validate, drive, preview: the robot stands on the floor): ``X,Y[,YAW]`` → (x, y, yaw); a launch
-    file's ``X,Y,Z,YAW`` is taken too, its Z dropped.
-    """
-    parts = [p.strip() for p in text.split(",")]
+def parse_spawn(text: str) -> tuple[float, float, float]:
+    """A ``--spawn`` value → (x, y, yaw): ``X,Y[,YAW]`` in metres and radians, the same in every command (the
+    robot stands on the floor, so there is no z). InputError (with the form to write) for anything else: not
+    two or three numbers, a number that is not finite, or a yaw beyond ±2π (probably degrees)."""
+    parts = [p.strip() for p in str(text).split(",")]
     try:
         values = [float(p) for p in parts]
     except ValueError:
-        values = []
-    if len(values) not in (2, 3, 4) or not all(math.isfinite(v) for v in values):
-        raise InputError(f"bad --spawn value {text!r}", hint=_SPAWN_HINTS[z])
-    if z:
-        values += [0.0] * (4 - len(values))
-        return (values[0], values[1], values[2], values[3])
-    if len(values) == 4:
-        values = [values[0], values[1], values[3]]
-    return (values[0], values[1], values[2] if len(values) == 3 else 0.0)
+        raise InputError(f"bad --spawn value {text!r}: {SPAWN_FORMS} must be numbers", hint=_HINT) from None
+    if len(values) not in (2, 3):
+        extra = " (there is no Z: the robot stands on the floor)" if len(values) == 4 else ""
+        raise InputError(f"bad --spawn value {text!r}: {len(values)} numbers, not 2 or 3{extra}", hint=_HINT)
+    if not all(math.isfinite(v) for v in values):
+        raise InputError(f"bad --spawn value {text!r}: every number must be finite", hint=_HINT)
+    yaw = values[2] if len(values) == 3 else 0.0
+    if abs(yaw) > 2 * math.pi:
+        raise InputError(f"bad --spawn yaw {format(yaw, 'g')}: more than 2π, so probably degrees",
+                         hint=f"write the yaw in radians, e.g. {format(math.radians(yaw), '.4g')} for "
+                              f"{format(yaw, 'g')}°")
+    return (values[0], values[1], yaw)
+
+
+def floor_pose(spawn: tuple[float, float, float]) -> Pose:
+    """(x, y, yaw) → the (x, y, z, yaw) a launch file writes: z 0, on the floor."""
+    return (spawn[0], spawn[1], 0.0, spawn[2])

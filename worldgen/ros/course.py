@@ -1,8 +1,9 @@
 """The class's catkin packages, ready for ``catkin_make``: ``WORKSPACE/src/intro_robo/``.
 
 * ``lab_a_spin_circles`` — ``scripts/spin_in_circles.py``: a constant Twist on ``cmd_vel``;
-* ``lab_a_stop_at_wall`` — ``scripts/stop_at_wall.py``: proportional control on the LiDAR's front distance
-  (``inf`` from Gazebo and ``0`` from the real LDS-01 both mean "nothing seen");
+* ``lab_a_stop_at_wall`` — ``scripts/stop_at_wall.py``: P (PID) control on the LiDAR's front distance, the law
+  of :mod:`worldgen.core.stoplaw` that ``worldgen drive`` runs (``inf`` from Gazebo and ``0`` from the real
+  LDS-01 both mean "nothing seen");
 * ``class_meeting_02_custom_gazebo_world`` — ``worlds/enclosed_room.world`` (built from
   ``examples/enclosed_room.yaml``, shipped in the wheel too) and ``launch/turtlebot3_in_enclosed_room.launch``;
 * ``intro_robo`` — a metapackage grouping the three.
@@ -18,6 +19,8 @@ from dataclasses import replace
 from pathlib import Path
 
 from .launch import default_launch_name, launch_xml, parse_node
+from ..core import stoplaw
+from ..core.numbers import format_number
 from ..core.resources import render_template
 from .scaffold import PackageFiles, PackageRequest, package_files, package_request, world_from_spec
 
@@ -27,7 +30,10 @@ DEPENDENCIES = ("rospy", "std_msgs", "geometry_msgs", "sensor_msgs")
 VERSION = "0.1.0"
 LICENSE = "BSD"
 SPIN = {"linear_speed": 0.1, "angular_speed": 0.5}
-STOP = {"target_distance": 0.5, "kp": 0.5, "max_speed": 0.2, "front_angle": 10}
+# the node's defaults are worldgen drive's, so the two run the same law (worldgen.core.stoplaw)
+STOP = {"target_distance": stoplaw.TARGET, "kp": stoplaw.KP, "max_speed": stoplaw.MAX_SPEED,
+        "front_angle": format_number(stoplaw.FRONT_ANGLE), "stop_band": stoplaw.STOP_BAND,
+        "resume_margin": stoplaw.RESUME_MARGIN}
 
 
 def _request(name: str, description: str, maintainer: str | None, exec_only=()) -> PackageRequest:
@@ -42,7 +48,7 @@ def course_files(maintainer: str | None = None) -> PackageFiles:
 
     world_file, world_text, spawn = world_from_spec(examples_dir() / "enclosed_room.yaml")
     worlds = {world_file: world_text}
-    launches = {default_launch_name(world_file): launch_xml(world_file, WORLD_PACKAGE, "env", spawn)}
+    launches = {default_launch_name(world_file): launch_xml(world_file, WORLD_PACKAGE, "optenv", spawn)}
     world_pkg = package_files(
         _request(WORLD_PACKAGE, "Class meeting 02: a custom Gazebo world (a closed room) and the launch file that "
                                 "puts a TurtleBot3 in it", maintainer), worlds, launches)
@@ -50,8 +56,8 @@ def course_files(maintainer: str | None = None) -> PackageFiles:
     def lab(name: str, script: str, params: dict, description: str) -> PackageFiles:
         node = parse_node(f"{name}/{script}")
         launch_name = f"{node.name}.launch"
-        launch = launch_xml(world_file, WORLD_PACKAGE, "env", spawn, nodes=[node],
-                            launch_name=launch_name)
+        launch = launch_xml(world_file, WORLD_PACKAGE, "optenv", spawn, nodes=[node],
+                            launch_name=launch_name, home=name)
         code = render_template(f"nodes/{script}.j2", package=name, **params)
         return package_files(_request(name, description, maintainer, exec_only=[WORLD_PACKAGE]),
                              launches={launch_name: launch}, scripts={script: code})

@@ -22,7 +22,10 @@ from ..core.resources import render_template
 from ..core.packages import manifest_name
 from ..spec.model import ROBOT_MODELS
 
-MODEL_CHOICES = ("env",) + ROBOT_MODELS   # "env": the model comes from $(env TURTLEBOT3_MODEL) at run time
+# The launch file's default model: "optenv" is TURTLEBOT3_MODEL when set, else burger (works in a fresh shell);
+# "env" is the class's exact $(env TURTLEBOT3_MODEL) (roslaunch fails when it is unset); or a fixed model.
+MODEL_DEFAULTS = {"optenv": "$(optenv TURTLEBOT3_MODEL burger)", "env": "$(env TURTLEBOT3_MODEL)"}
+MODEL_CHOICES = tuple(MODEL_DEFAULTS) + ROBOT_MODELS
 
 
 # ---------------------------------------------------------------------------------------------------------------
@@ -91,17 +94,19 @@ def default_launch_name(world_file_name: str) -> str:
     return f"turtlebot3_in_{Path(world_file_name).name.split('.')[0]}.launch"
 
 
-def launch_xml(world_file_name: str, package: str, model: str = "env", spawn: Sequence[float] = (0.0, 0.0),
-               nodes: Sequence[NodeRef] = (), launch_name: str | None = None) -> str:
+def launch_xml(world_file_name: str, package: str, model: str = "optenv", spawn: Sequence[float] = (0.0, 0.0),
+               nodes: Sequence[NodeRef] = (), launch_name: str | None = None, home: str | None = None) -> str:
     """The launch file text for ``PKG/worlds/WORLD`` and a TurtleBot3.
 
-    ``model`` is ``env`` (the default comes from ``$(env TURTLEBOT3_MODEL)``, as in the class) or a model name;
-    ``spawn`` is (x, y[, z[, yaw]]) written as the ``x_pos``/``y_pos``/``z_pos``/``yaw`` defaults; ``nodes`` are
-    extra nodes started beside Gazebo. Raises InputError for a bad model, package, world name or duplicate node.
+    ``model`` is ``optenv`` (the default is ``$(optenv TURTLEBOT3_MODEL burger)``), ``env`` (the class's exact
+    ``$(env TURTLEBOT3_MODEL)``) or a model name; ``spawn`` is (x, y[, z[, yaw]]) written as the ``x_pos``/``y_pos``/``z_pos``/``yaw`` defaults; ``nodes`` are
+    extra nodes started beside Gazebo; ``home`` is the package the launch file is in (default ``package``, the one
+    whose ``worlds/`` holds the world), named in the file's ``roslaunch HOME NAME`` usage comment. Raises InputError for a bad model, package, world name or duplicate node.
     """
     if model not in MODEL_CHOICES:
         raise InputError(f"unknown robot model {model!r}", hint=f"use one of {', '.join(MODEL_CHOICES)}")
     check_package_ref(package)
+    home = check_package_ref(home or package)
     world = Path(world_file_name).name
     if not world or re.search(r"[\s$()<>&\"']", world):
         raise InputError(f"world file name {world_file_name!r} cannot be passed to Gazebo",
@@ -115,8 +120,8 @@ def launch_xml(world_file_name: str, package: str, model: str = "env", spawn: Se
         seen.add(node.name)
     return render_template(
         "launch/turtlebot3_world.launch.j2", world=world, package=package,
-        launch_hint=f"{package} {launch_name or default_launch_name(world)}",
-        model_default="$(env TURTLEBOT3_MODEL)" if model == "env" else model,
+        launch_hint=f"{home} {launch_name or default_launch_name(world)}",
+        model_default=MODEL_DEFAULTS.get(model, model),
         x=format_number(pose[0]), y=format_number(pose[1]), z=format_number(pose[2]), yaw=format_number(pose[3]),
         nodes=list(nodes))
 
@@ -129,7 +134,7 @@ def package_name_of(pkg_dir: str | Path) -> str:
 
 
 def package_world_files(pkg_dir: str | Path, world_name: str, world_text: str, spawn: Sequence[float],
-                        model: str = "env") -> dict[Path, str]:
+                        model: str = "optenv") -> dict[Path, str]:
     """The files that put a built world into a catkin package: ``worlds/NAME.world`` and
     ``launch/turtlebot3_in_NAME.launch`` (path → text, for :func:`worldgen.core.fsio.write_files`)."""
     pkg_dir = Path(pkg_dir)

@@ -163,9 +163,10 @@ def package_xml(req: PackageRequest, gazebo: bool = False) -> str:
                            authors=req.authors, dependencies=dependency_tags(req), meta=req.meta, gazebo=gazebo)
 
 
-def cmakelists(req: PackageRequest, data_dirs: Sequence[str] = (), scripts: Sequence[str] = ()) -> str:
+def cmakelists(req: PackageRequest, data_dirs: Sequence[str] = ()) -> str:
     """CMakeLists.txt in catkin's skeleton shape; ``data_dirs`` are installed to the package's share folder and
-    ``scripts`` (package-relative paths) through catkin_install_python."""
+    every file in ``scripts/`` (found again at each build, so nodes added later install too) through
+    catkin_install_python."""
     # message_runtime is needed at run time only (not by find_package); message_generation at build time only
     components = [d for d in req.catkin_deps if d != "message_runtime"]
     export = [d for d in req.catkin_deps if d not in ("genmsg", "message_generation")]
@@ -173,7 +174,7 @@ def cmakelists(req: PackageRequest, data_dirs: Sequence[str] = (), scripts: Sequ
     text = render_template("package/CMakeLists.txt.j2", name=req.name, meta=req.meta,
                            catkin_deps=components, boost_comps=req.boost_comps,
                            system_deps=[d for d in req.system_deps if d != "boost"], export_deps=export,
-                           system_includes=system_includes, scripts=list(scripts), data_dirs=list(data_dirs))
+                           system_includes=system_includes, data_dirs=list(data_dirs))
     return text.rstrip("\n") + "\n"
 
 
@@ -222,11 +223,11 @@ def package_files(req: PackageRequest, worlds: Mapping[str, str] | None = None,
     data_dirs = [d for d in ("launch", "models", "worlds") if d in folders]   # sorted, as catkin_lint likes
     script_paths = sorted(f"scripts/{n}" for n in scripts)
     files["package.xml"] = package_xml(req, gazebo=bool(worlds))
-    files["CMakeLists.txt"] = cmakelists(req, data_dirs, script_paths)
+    files["CMakeLists.txt"] = cmakelists(req, data_dirs)
     return PackageFiles(dict(sorted(files.items())), set(script_paths))
 
 
-def world_from_spec(spec_path: str | Path, model: str = "env") -> tuple[str, str, tuple[float, ...]]:
+def world_from_spec(spec_path: str | Path, model: str = "optenv") -> tuple[str, str, tuple[float, ...]]:
     """Build the world of the spec at ``spec_path``: its file name ``NAME.world``, its SDF text and the robot's
     spawn pose (x, y, z, yaw): the spec's robot pose, or without one the deepest point of the room."""
     from ..sdf.writer import spec_world_sdf
@@ -239,7 +240,7 @@ def world_from_spec(spec_path: str | Path, model: str = "env") -> tuple[str, str
     return f"{spec.name}.world", world_text, spawn
 
 
-def world_package_files(spec_path: str | Path, package: str, model: str = "env"
+def world_package_files(spec_path: str | Path, package: str, model: str = "optenv"
                         ) -> tuple[dict[str, str], dict[str, str]]:
     """(worlds, launches) for a package ``package`` holding the spec's world: ``NAME.world`` and
     ``turtlebot3_in_NAME.launch``."""

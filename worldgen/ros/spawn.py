@@ -10,7 +10,7 @@ from ..core.spawnpose import Pose
 from ..geometry.placement import checked_spawn, robot_radius, spawn_in_scene, world_rooms
 
 
-def spawn_for_world(world_path: str | Path, model: str = "env", spawn: Sequence[float] | None = None
+def spawn_for_world(world_path: str | Path, model: str = "optenv", spawn: Sequence[float] | None = None
                     ) -> tuple[Pose, str]:
     """The spawn pose for a launch file of ``world_path`` and where it came from: ``given`` (``spawn``, checked
     against the world), ``spec`` (the robot pose of ``NAME.yaml``/``.yml``/``.json`` beside ``NAME.world``, the
@@ -32,7 +32,7 @@ def spawn_for_world(world_path: str | Path, model: str = "env", spawn: Sequence[
     return checked_spawn(rooms, None, source=world_path), ("world" if rooms.rooms() else "open")
 
 
-def spec_spawn(spec, world_text: str, model: str = "env") -> Pose:
+def spec_spawn(spec, world_text: str, model: str = "optenv") -> Pose:
     """The spawn pose for the world built from ``spec``: the spec's robot pose, checked against ``world_text``
     (the built world) as ``worldgen launch`` checks it, or without one the deepest point of its room."""
     from ..sdf.reader import read_world_text

@@ -8,6 +8,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+from ..core import stoplaw
 from .lidar import front_distance
 from .session import Session
 
@@ -100,7 +101,9 @@ class StopAtWallResult:
     steady_state_error: float | None  # final − target
     settling_time: float | None       # from the start until the distance stays within ±band of its final value
     band: float
-    stopped: bool                     # |v| < STOPPED_SPEED over the last second
+    stop_band: float                  # the law stops (and holds) once within this of the target
+    stop_time: float | None           # when the law last stopped and began to hold (None: it never did)
+    stopped: bool                     # holding at the end, and |v| < STOPPED_SPEED over the last second
     within_tolerance: bool            # |final − target| ≤ tolerance
     tolerance: float
     contacts: list[dict]
@@ -114,32 +117,35 @@ class StopAtWallResult:
         return {**self.__dict__, "ok": self.ok}
 
 
-def stop_at_wall(session: Session, target: float = 0.5, kp: float = 0.5, ki: float = 0.0, kd: float = 0.0,
-                 duration: float = 15.0, max_speed: float = 0.22, rate: float = 5.0,
-                 half_angle: float = math.radians(10), band: float = 0.02, tolerance: float = 0.05,
-                 ) -> StopAtWallResult:
-    """Drive toward whatever is ahead and stop ``target`` m from it, as a student's node does: at ``rate`` Hz
-    (the LiDAR's 5 Hz, or 30) read the front distance d (nearest beam within ±``half_angle``; when every beam
-    there reads no hit, d is the range maximum), and command
-    ``v = clamp(kp·e + ki·∫e dt + kd·de/dt, ±max_speed)`` with ``e = d − target`` (a plain PID: the integral
-    is not limited, so a large ``ki`` winds up and overshoots, as on a real robot)."""
+def stop_at_wall(session: Session, target: float = stoplaw.TARGET, kp: float = stoplaw.KP, ki: float = 0.0,
+                 kd: float = 0.0, duration: float = 15.0, max_speed: float = stoplaw.MAX_SPEED, rate: float = 5.0,
+                 half_angle: float = math.radians(stoplaw.FRONT_ANGLE), band: float = 0.02,
+                 tolerance: float = 0.05, stop_band: float = stoplaw.STOP_BAND) -> StopAtWallResult:
+    """Drive toward whatever is ahead and stop ``target`` m from it, exactly as the generated ``stop_at_wall.py``
+    node does (:class:`worldgen.core.stoplaw.StopLaw`): at ``rate`` Hz (the LiDAR's 5 Hz, or 30) read the front
+    distance (nearest beam within ±``half_angle``; None when nothing is seen there) and command
+    ``v = clamp(kp·e + ki·∫e dt + kd·de/dt, 0, max_speed)`` with ``e = front − target``; nothing seen: full
+    speed; once within ``stop_band`` of the target: stop and hold, so LiDAR noise cannot start it again. It never
+    reverses. ``band`` is the settling-time band around the final distance, ``tolerance`` how close to the
+    target the run must end."""
     if session.lidar is None:
         session.scan()   # raises the "no LiDAR" error
     period = 1.0 / rate
     start_t = session.t
     session.start_exercise()
     series: dict[str, list] = {"t": [], "measured": [], "true": [], "v_cmd": [], "v": []}
-    integral, last_error = 0.0, None
-    for _ in range(max(1, round(duration / period))):
+    law = stoplaw.StopLaw(target=target, kp=kp, ki=ki, kd=kd, max_speed=max_speed, stop_band=stop_band)
+    stop_time = None
+    for step in range(max(1, round(duration / period))):
         scan = session.scan()
         measured = front_distance(scan, half_angle)
         true = front_distance(scan, half_angle, true=True)
-        d = measured if measured is not None else session.lidar.range_max
-        error = d - target
-        integral += error * period
-        derivative = 0.0 if last_error is None else (error - last_error) / period
-        last_error = error
-        v_cmd = max(-max_speed, min(max_speed, kp * error + ki * integral + kd * derivative))
+        was_holding = law.holding
+        v_cmd = law.step(measured, period if step else 0.0)
+        if law.holding and not was_holding:
+            stop_time = session.t - start_t
+        elif not law.holding:
+            stop_time = None
         odom = session.odometry()
         for key, value in (("t", session.t - start_t), ("measured", measured), ("true", true), ("v_cmd", v_cmd),
                            ("v", odom.v)):
@@ -159,7 +165,8 @@ def stop_at_wall(session: Session, target: float = 0.5, kp: float = 0.5, ki: flo
         overshoot=max(0.0, target - nearest) if nearest is not None else 0.0,
         steady_state_error=final - target if final is not None else None,
         settling_time=_settling_time(series["t"], series["true"], final, band) if final is not None else None,
-        band=band, stopped=all(abs(v) < STOPPED_SPEED for v in last_second),
+        band=band, stop_band=stop_band, stop_time=stop_time,
+        stopped=law.holding and all(abs(v) < STOPPED_SPEED for v in last_second),
         within_tolerance=final is not None and abs(final - target) <= tolerance, tolerance=tolerance,
         contacts=session.touches.to_list(), series=series)
 

@@ -10,18 +10,19 @@ from __future__ import annotations
 import math
 import time
 
+from ..core import stoplaw
 from ..core.scene import Scene
 
 BEHAVIOURS = ("spin", "stop-at-wall")
 SETTLE_SECONDS = 0.5   # the robot comes to rest on its wheels and caster before each run
-STOP_DURATION = 20.0   # s of stop-at-wall when no duration is given (a spin's default is one full turn)
+STOP_DURATION = 30.0   # s of stop-at-wall when no duration is given (a spin's default is one full turn)
 
 
 def drive_exercise(scene_file: str, world: str, spec_robot: dict | None = None, behaviour: str = "stop-at-wall", robot: str | None = None,
                    spawn: list[float] | None = None, gains: list[dict] | None = None, target: float = 0.5,
                    duration: float | None = None, max_speed: float = 0.22, omega: float = 1.0, rate: float = 5.0,
                    front_angle: float = 10.0, no_hit: str = "inf", tolerance: float = 0.05, band: float = 0.02,
-                   seed: int = 0) -> dict:
+                   seed: int = 0, stop_band: float | None = None) -> dict:
     """Run ``behaviour`` in the scene pickled in ``scene_file`` (read from ``world``, with the robot entry
     ``spec_robot`` of the spec it came from, if any) and return what happened: the robot and spawn pose used (and where they
     came from), one result per gain set (spin: one run), simulated and wall-clock seconds.
@@ -29,7 +30,8 @@ def drive_exercise(scene_file: str, world: str, spec_robot: dict | None = None, 
     Robot and spawn pose: the arguments when given, else the spec's ``robot`` entry, else burger at the origin; a
     spawn inside a wall or an obstacle, closer to one than the robot's radius or outside the room is an
     InputError.
-    ``front_angle`` (degrees) is the half-width of the cone whose nearest beam is the front distance.
+    ``front_angle`` (degrees) is the half-width of the cone whose nearest beam is the front distance;
+    ``stop_band`` (m) how near the target the law stops and holds (:mod:`worldgen.core.stoplaw`).
     """
     from .behaviours import settle, spin, stop_at_wall
     from .session import Session
@@ -56,7 +58,8 @@ def drive_exercise(scene_file: str, world: str, spec_robot: dict | None = None, 
                 result = stop_at_wall(session, target=target, kp=gain.get("kp", 0.0), ki=gain.get("ki", 0.0),
                                       kd=gain.get("kd", 0.0), duration=duration or STOP_DURATION,
                                       max_speed=max_speed, rate=rate, half_angle=math.radians(front_angle),
-                                      band=band, tolerance=tolerance)
+                                      band=band, tolerance=tolerance,
+                                      stop_band=stoplaw.STOP_BAND if stop_band is None else stop_band)
             runs.append({**result.to_dict(), "settle": rest.to_dict()})
             sim_seconds += session.t
     return {"world": world, "behaviour": behaviour, "robot": robot_used, "spawn": spawn_used,
