@@ -1,0 +1,105 @@
+"""Findings about a world built from a spec, in the spec's own words.
+
+The SDF writer names each wall's collision ``Wall_N_Collision[_i]`` in a link ``Wall_N`` of the model named after
+the spec (:mod:`worldgen.sdf.writer`), N being the index of the geometry's merged wall
+(:func:`worldgen.geometry.building.build_geometry`). A merged wall is the union of the spec's room sides and
+segments that lie on its line and overlap it, so each N maps back to those: ``room 'kitchen', wall 2 (from
+(2.5,-2) to (6,-2))``, a shared wall naming every room that draws it. :func:`rename_findings` rewrites the scene's
+labels in findings' messages and places with those names.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import replace
+from typing import Dict, List
+
+from ..core.findings import Finding
+
+ON_LINE = 1e-3   # m: a spec side this close to a wall's centre-line lies on it
+
+
+def _num(value: float) -> str:
+    text = f"{value:.3f}".rstrip("0").rstrip(".")
+    return "0" if text in ("-0", "") else text
+
+
+def _pt(p) -> str:
+    return f"({_num(p[0])},{_num(p[1])})"
+
+
+def _spec_sides(spec) -> list[tuple[str, tuple, tuple]]:
+    """Every side the spec draws: (its name, from, to)."""
+    sides = []
+    for room in spec.rooms:
+        vs = room.vertices
+        for i, p in enumerate(vs):
+            q = vs[(i + 1) % len(vs)]
+            sides.append((f"room '{room.name}', wall {i} (from {_pt(p)} to {_pt(q)})", p, q))
+    for j, seg in enumerate(spec.segments):
+        sides.append((f"segment {j + 1} (from {_pt(seg.start)} to {_pt(seg.end)})", seg.start, seg.end))
+    return sides
+
+
+def _on_wall(wall, p, q) -> bool:
+    """Whether the side p–q lies on the wall's centre-line and overlaps it by more than a join."""
+    (ax, ay), (bx, by) = wall.start, wall.end
+    length = math.hypot(bx - ax, by - ay)
+    if length < 1e-9:
+        return False
+    ux, uy = (bx - ax) / length, (by - ay) / length
+    for x, y in (p, q):
+        if abs((x - ax) * uy - (y - ay) * ux) > ON_LINE:
+            return False
+    s0, s1 = sorted(((p[0] - ax) * ux + (p[1] - ay) * uy, (q[0] - ax) * ux + (q[1] - ay) * uy))
+    return min(s1, length) - max(s0, 0.0) > wall.thickness
+
+
+def wall_names(spec) -> Dict[int, str]:
+    """Each built wall's index → what the spec calls it (see the module docstring)."""
+    from ..geometry.building import build_geometry
+
+    building = build_geometry(spec)
+    sides = _spec_sides(spec)
+    names: Dict[int, str] = {}
+    for wall in building.walls:
+        if wall.filler:
+            rooms = " and ".join(f"'{r}'" for r in wall.rooms)
+            names[wall.index] = f"the filler at a sharp corner of room {rooms}" if rooms else "a corner filler"
+            continue
+        found = [name for name, p, q in sides if _on_wall(wall, p, q)]
+        if found:
+            names[wall.index] = found[0] + "".join(f", shared with {n}" for n in found[1:])
+    return names
+
+
+def rename_findings(findings: List[Finding], spec) -> List[Finding]:
+    """``findings`` with the building's ``NAME/Wall_N/Wall_N_Collision[_i]`` labels replaced by the spec's names
+    of those walls; a gap "between" two pieces of one wall is "in" that wall."""
+    try:
+        names = wall_names(spec)
+    except Exception:   # a spec that does not build has no walls to name (its own error says why)
+        return findings
+    if not names:
+        return findings
+    label = re.escape(spec.name) + r"/Wall_(\d+)/Wall_\d+_Collision(?:_\d+)?"
+    pair = re.compile(rf"between ({label}) and ({label})")
+    single = re.compile(label)
+
+    def name_of(index: str, whole: str) -> str:
+        return names.get(int(index), whole)
+
+    def one(match) -> str:
+        return name_of(match.group(1), match.group(0))
+
+    def both(match) -> str:
+        a, b = name_of(match.group(2), match.group(1)), name_of(match.group(4), match.group(3))
+        return f"in {a}" if a == b else f"between {a} and {b}"
+
+    def text(value):
+        if value is None:
+            return None
+        return single.sub(one, pair.sub(both, value))
+
+    return [replace(f, message=text(f.message), where=text(f.where)) for f in findings]
