@@ -17,7 +17,7 @@ MIN_OVERLAP = 0.01   # m²: shared floor smaller than this is a wall two rooms s
 
 
 def _xy(p) -> str:
-    return f"({p.x:.2f}, {p.y:.2f})"
+    return f"({p.x + 0.0:.2f}, {p.y + 0.0:.2f})".replace("-0.00", "0.00")
 
 
 def _obstacle_shape(o):
@@ -35,11 +35,11 @@ def lint_spec(spec) -> List[Finding]:
     import shapely
 
     from ..geometry.building import build_geometry, obstacle_names
-    from .spec_names import wall_names
+    from .spec_names import side_name, wall_sides
 
     try:
         building = build_geometry(spec)
-        names = wall_names(spec)
+        sides = wall_sides(spec)
     except Exception:
         return []
     findings: List[Finding] = []
@@ -61,7 +61,8 @@ def lint_spec(spec) -> List[Finding]:
         shape = _obstacle_shape(o)
         hit = [(w, cut) for w, box in walls for cut in (shape.intersection(box),) if cut.area > 1e-4]
         for wall, cut in hit[:3]:
-            what = names.get(wall.index, f"wall {wall.index}")
+            spot = cut.representative_point()
+            what = side_name(sides[wall.index], (spot.x, spot.y)) if wall.index in sides else f"wall {wall.index}"
             findings.append(Finding(
                 "spec", "warning",
                 f"obstacle '{name}' stands in {what}: {cut.area:.3f} m² of it is inside the wall, around "

@@ -56,50 +56,87 @@ def _on_wall(wall, p, q) -> bool:
     return min(s1, length) - max(s0, 0.0) > wall.thickness
 
 
-def wall_names(spec) -> Dict[int, str]:
-    """Each built wall's index → what the spec calls it (see the module docstring)."""
+def wall_sides(spec) -> Dict[int, list]:
+    """Each built wall's index → the spec's sides on it, as (name, from, to); a corner filler → [(its name, None,
+    None)]."""
     from ..geometry.building import build_geometry
 
     building = build_geometry(spec)
     sides = _spec_sides(spec)
-    names: Dict[int, str] = {}
+    found: Dict[int, list] = {}
     for wall in building.walls:
         if wall.filler:
             rooms = " and ".join(f"'{r}'" for r in wall.rooms)
-            names[wall.index] = f"the filler at a sharp corner of room {rooms}" if rooms else "a corner filler"
+            found[wall.index] = [(f"the filler at a sharp corner of room {rooms}" if rooms else "a corner filler",
+                                  None, None)]
             continue
-        found = [name for name, p, q in sides if _on_wall(wall, p, q)]
-        if found:
-            names[wall.index] = found[0] + "".join(f", shared with {n}" for n in found[1:])
-    return names
+        on = [side for side in sides if _on_wall(wall, side[1], side[2])]
+        if on:
+            found[wall.index] = on
+    return found
+
+
+def _along(p, q, point) -> float:
+    """How far ``point`` lies from the segment p–q."""
+    (ax, ay), (bx, by) = p, q
+    dx, dy = bx - ax, by - ay
+    length2 = dx * dx + dy * dy
+    t = 0.0 if length2 == 0 else max(0.0, min(1.0, ((point[0] - ax) * dx + (point[1] - ay) * dy) / length2))
+    return math.hypot(point[0] - ax - t * dx, point[1] - ay - t * dy)
+
+
+def side_name(sides: list, point=None) -> str:
+    """The name of a wall drawn by ``sides``: the sides at ``point`` when given (a wall two rooms share names
+    both, "shared with"), else every side of the straight wall."""
+    if point is not None and sides[0][1] is not None:
+        distances = [_along(p, q, point) for _, p, q in sides]
+        nearest = min(distances)
+        at = [side for side, d in zip(sides, distances) if d <= nearest + 0.05]
+        return at[0][0] + "".join(f", shared with {n}" for n, _, _ in at[1:])
+    if len(sides) == 1:
+        return sides[0][0]
+    return "the straight wall of " + " and ".join(n for n, _, _ in sides)
+
+
+def wall_names(spec) -> Dict[int, str]:
+    """Each built wall's index → what the spec calls it (see the module docstring)."""
+    return {index: side_name(sides) for index, sides in wall_sides(spec).items()}
+
+
+_POINT = re.compile(r"\((-?\d+(?:\.\d+)?), (-?\d+(?:\.\d+)?)\)")
 
 
 def rename_findings(findings: List[Finding], spec) -> List[Finding]:
     """``findings`` with the building's ``NAME/Wall_N/Wall_N_Collision[_i]`` labels replaced by the spec's names
-    of those walls; a gap "between" two pieces of one wall is "in" that wall."""
+    of those walls (the sides at the first point the finding names, when a straight wall runs along several);
+    a gap "between" two pieces of one wall is "in" that wall."""
     try:
-        names = wall_names(spec)
+        sides = wall_sides(spec)
     except Exception:   # a spec that does not build has no walls to name (its own error says why)
         return findings
-    if not names:
+    if not sides:
         return findings
     label = re.escape(spec.name) + r"/Wall_(\d+)/Wall_\d+_Collision(?:_\d+)?"
     pair = re.compile(rf"between ({label}) and ({label})")
     single = re.compile(label)
 
-    def name_of(index: str, whole: str) -> str:
-        return names.get(int(index), whole)
+    def renamed(f: Finding) -> Finding:
+        spot = _POINT.search(f.message) or (_POINT.search(f.where) if f.where else None)
+        point = (float(spot.group(1)), float(spot.group(2))) if spot else None
 
-    def one(match) -> str:
-        return name_of(match.group(1), match.group(0))
+        def name_of(index: str, whole: str) -> str:
+            return side_name(sides[int(index)], point) if int(index) in sides else whole
 
-    def both(match) -> str:
-        a, b = name_of(match.group(2), match.group(1)), name_of(match.group(4), match.group(3))
-        return f"in {a}" if a == b else f"between {a} and {b}"
+        def one(match) -> str:
+            return name_of(match.group(1), match.group(0))
 
-    def text(value):
-        if value is None:
-            return None
-        return single.sub(one, pair.sub(both, value))
+        def both(match) -> str:
+            a, b = name_of(match.group(2), match.group(1)), name_of(match.group(4), match.group(3))
+            return f"in {a}" if a == b else f"between {a} and {b}"
 
-    return [replace(f, message=text(f.message), where=text(f.where)) for f in findings]
+        def text(value):
+            return None if value is None else single.sub(one, pair.sub(both, value))
+
+        return replace(f, message=text(f.message), where=text(f.where))
+
+    return [renamed(f) for f in findings]
