@@ -174,12 +174,13 @@ def test_no_hit_beams_say_once_what_they_mean_for_code_and_warn_only_when_it_mat
     # a few far corners out of range (any room over 3.5 m): one info line, no warning
     corners = {"no_hit": 22, "no_hit_bearings_deg": [32.0], "no_hit_reading": math.inf, "front_no_hit": False}
     [note] = sim_findings(numbers(lidar=corners), "inf").findings
-    assert note.severity == "info" and "22 of 360 beams see nothing within 3.5 m and read inf" in note.message
-    assert "inf in Gazebo but 0 on the real robot" in note.message and "code must treat both" in note.message
+    assert note.message == ("22 of 360 beams see nothing within 3.5 m and read inf: only the farthest parts of the "
+                            "room are out of range") and note.severity == "info"
     # nothing straight ahead, where a stop-at-wall node looks first: a warning
     ahead = {**corners, "front_no_hit": True}
     [gazebo] = sim_findings(numbers(lidar=ahead), "inf").findings
     assert gazebo.severity == "warning" and "(straight ahead too)" in gazebo.message
+    assert "inf in Gazebo but 0 on the real robot" in gazebo.message and "code must treat both" in gazebo.message
     [robot] = sim_findings(numbers(lidar={**ahead, "no_hit_reading": 0.0}), "zero").findings
     assert "read 0" in robot.message and robot.severity == "warning"
     # most beams blind: a warning, said once

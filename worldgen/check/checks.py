@@ -438,7 +438,8 @@ NO_HIT_MEANING = ("a beam that hits nothing reads inf in Gazebo but 0 on the rea
 def lidar_no_hit_finding(scan: dict, no_hit: str) -> Finding | None:
     """What beams that hit nothing mean for the student's code, said once: a warning when the beams straight ahead
     or at least :data:`NO_HIT_SHARE` of them see nothing from the spawn (what a stop-at-wall node reads first),
-    an info line when only some far corners are out of range (any room wider than 3.5 m has those), else None."""
+    a short info line when only some far corners are out of range (any room wider than 3.5 m has those), else
+    None."""
     missed, beams = scan["no_hit"], scan["beams"]
     if not missed:
         return None
@@ -452,7 +453,7 @@ def lidar_no_hit_finding(scan: dict, no_hit: str) -> Finding | None:
         ahead = " (straight ahead too)" if scan.get("front_no_hit") and missed != beams else ""
         return Finding("lidar", "warning", f"{what}{ahead}: {NO_HIT_MEANING}",
                        fix="handle both readings in code, or spawn the robot within 3.5 m of a wall ahead")
-    return Finding("lidar", "info", f"{what} (the farthest parts of the room): {NO_HIT_MEANING}")
+    return Finding("lidar", "info", f"{what}: only the farthest parts of the room are out of range")
 
 
 def _contacts_text(part: dict) -> str | None:

@@ -106,10 +106,11 @@ def wall_names(spec) -> Dict[int, str]:
 _POINT = re.compile(r"\((-?\d+(?:\.\d+)?), (-?\d+(?:\.\d+)?)\)")
 
 
-def rename_findings(findings: List[Finding], spec) -> List[Finding]:
+def rename_findings(findings: List[Finding], spec, near=None) -> List[Finding]:
     """``findings`` with the building's ``NAME/Wall_N/Wall_N_Collision[_i]`` labels replaced by the spec's names
-    of those walls (the sides at the first point the finding names, when a straight wall runs along several);
-    a gap "between" two pieces of one wall is "in" that wall."""
+    of those walls (the sides at the first point the finding names, else at ``near`` — the spawn, where the
+    robot touches things — when a straight wall runs along several); a gap "between" two pieces of one wall is
+    "in" that wall."""
     try:
         sides = wall_sides(spec)
     except Exception:   # a spec that does not build has no walls to name (its own error says why)
@@ -122,7 +123,7 @@ def rename_findings(findings: List[Finding], spec) -> List[Finding]:
 
     def renamed(f: Finding) -> Finding:
         spot = _POINT.search(f.message) or (_POINT.search(f.where) if f.where else None)
-        point = (float(spot.group(1)), float(spot.group(2))) if spot else None
+        point = (float(spot.group(1)), float(spot.group(2))) if spot else near
 
         def name_of(index: str, whole: str) -> str:
             return side_name(sides[int(index)], point) if int(index) in sides else whole

@@ -377,7 +377,7 @@ def _named(results: list[Result], job: Job) -> list[Result]:
 
     extra = lint_spec(spec)
     for r in results:
-        r.findings = rename_findings(r.findings, spec) + list(extra)
+        r.findings = rename_findings(r.findings, spec, r.spawn[:2] if r.spawn else None) + list(extra)
     return results
 
 
