@@ -228,3 +228,17 @@ def test_no_spawn_checks_every_closed_room_from_its_deepest_point(tmp_path):
     [r] = json.loads(out.stdout)["results"]
     assert out.exit_code == 1 and r["spawn_source"].startswith("no spawn given and this world has no closed room")
     assert r["metrics"]["gaps"][0]["width"] == pytest.approx(4.0, abs=0.2)
+
+
+def test_drive_in_a_folder_drives_each_launch_files_world_from_its_spawn(submissions):
+    out = cli("drive", submissions, "--format", "json")
+    doc = json.loads(out.stdout)
+    assert out.exit_code == 1 and doc["ok"] is False
+    ana, ben, cara = doc["worlds"]
+    assert ana["world"].endswith("ana_world/launch/turtlebot3_in_ana_room.launch")
+    assert ana["spawn"] == [9.2, 4.4, 0.5] and ana["spawn_source"].startswith("from launch file")
+    assert ana["runs"][0]["final_distance"] == pytest.approx(0.5, abs=0.05) and ana["runs"][0]["contacts"] == []
+    assert ben["spawn"] == [-7.5, 3.3, 0.0]
+    assert cara["ok"] is False and "cannot be found" in cara["error"]
+    refused = cli("drive", submissions, "--plot", submissions.parent / "steps.png")
+    assert refused.exit_code == 2 and "--plot and --csv take a single world" in refused.output
