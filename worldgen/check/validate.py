@@ -2,16 +2,20 @@
 
 An input is a world file (``.world``, ``.sdf``, ``model.sdf``, or anything holding ``<sdf>``), a floorplan spec
 (built to SDF on the fly, exactly as ``worldgen build`` writes it), a roslaunch file (the world it starts, its
-robot model and spawn pose) or a catkin package folder (each of its launch files). :func:`plan` turns inputs
-into :class:`Job` s, refusing bad input (missing paths, bad options) with an :class:`~worldgen.core.errors.InputError`
-before anything runs; :func:`run_job` validates one job into a :class:`~worldgen.check.report.Result`;
-:func:`validate` runs many on worker threads, each driving its own child processes for the simulator, and
-returns the results in input order. With ``sdformat`` set, libsdformat's own check runs too, in the same worker
-thread (the library in a child process of its own), so ``jobs`` run that in parallel as well.
+robot model and spawn pose), a catkin package folder (each of its launch files) or any other folder (searched for
+packages, else for worlds and specs: :mod:`worldgen.check.discover`). :func:`plan` turns inputs into :class:`Job` s;
+a path that is missing or cannot be read becomes a failed job of its own (check ``input``), and only bad options,
+or every path being bad, are an :class:`~worldgen.core.errors.InputError` before anything runs; :func:`run_job`
+validates one job into its :class:`~worldgen.check.report.Result` s; :func:`run_jobs` runs many on worker threads,
+each driving its own child processes for the simulator, and returns the results in job order. With ``sdformat``
+set, libsdformat's own check runs too, in the same worker thread (the library in a child process of its own), so
+``jobs`` run that in parallel as well.
 
 Spawn pose, first found: ``--spawn``; the launch file (``--launch``, or the input when it is one); the spec's
-``robot`` entry (the input spec, or a spec of the same name beside the world); the world's origin. The report
-says which.
+``robot`` entry (the input spec, or a spec of the same name beside the world). With none, the world is checked
+from the deepest free point of each closed room, one result per room (:mod:`worldgen.check.nospawn`). The report
+says which. Findings about a world built from a spec name the spec's rooms and walls
+(:mod:`worldgen.check.spec_names`), and the spec's own oddities are warned about (:mod:`worldgen.check.spec_lint`).
 """
 
 from __future__ import annotations
