@@ -242,3 +242,44 @@ def test_drive_in_a_folder_drives_each_launch_files_world_from_its_spawn(submiss
     assert cara["ok"] is False and "cannot be found" in cara["error"]
     refused = cli("drive", submissions, "--plot", submissions.parent / "steps.png")
     assert refused.exit_code == 2 and "--plot and --csv take a single world" in refused.output
+
+
+# ------------------------------------------------------------------------------------------ the README says so
+
+def readme() -> str:
+    from conftest import REPO
+
+    return (REPO / "README.md").read_text(encoding="utf-8")
+
+
+def run_readme_command(line: str, cwd: Path) -> subprocess.CompletedProcess:
+    import shlex
+
+    words = shlex.split(line)
+    assert words[0] == "worldgen"
+    return subprocess.run([sys.executable, "-m", "worldgen", *words[1:]], cwd=cwd, capture_output=True, text=True,
+                          timeout=300)
+
+
+def test_the_readme_grading_command_runs_as_written(submissions):
+    import re
+
+    [command] = re.findall(r"```sh\n(worldgen validate submissions/[^\n]*)\n```", readme())
+    proc = run_readme_command(command, submissions.parent)
+    assert proc.returncode == 1 and "Traceback" not in proc.stderr   # Ben's and Cara's submissions fail
+    cases = etree.parse(str(submissions.parent / "report.xml")).getroot().iter("testcase")
+    assert {c.get("classname") for c in cases if c.find("failure") is not None} == {
+        "submissions/ben/ben_world/launch/turtlebot3_in_ben_room.launch", "submissions/cara/cara_world",
+        "submissions/cara/cara_world/launch/turtlebot3_in_cara_room.launch"}
+
+
+def test_the_readme_text_report_is_what_validate_prints(tmp_path):
+    import re
+
+    from conftest import REPO
+
+    block = re.search(r"```\n\$ (worldgen validate examples/[^\n]*)\n(.*?)```", readme(), flags=re.S)
+    (tmp_path / "examples").symlink_to(REPO / "examples")
+    proc = run_readme_command(block.group(1), tmp_path)
+    assert proc.stdout == block.group(2)
+    assert proc.returncode == 1 and (tmp_path / "report.xml").is_file()
