@@ -30,16 +30,17 @@ def _obstacle_shape(o):
     return shapely.Point(o.at).buffer(o.radius or 0.0, quad_segs=16)
 
 
-def lint_spec(spec) -> List[Finding]:
-    """The ``spec`` check's findings for ``spec`` (none when it does not build: its own error says why)."""
+def lint_spec(spec, building=None, sides=None) -> List[Finding]:
+    """The ``spec`` check's findings for ``spec`` (none when it does not build: its own error says why);
+    ``building`` and ``sides`` (:func:`worldgen.check.spec_names.wall_sides`) when already known."""
     import shapely
 
     from ..geometry.building import build_geometry, obstacle_names
     from .spec_names import side_name, wall_sides
 
     try:
-        building = build_geometry(spec)
-        sides = wall_sides(spec)
+        building = building if building is not None else build_geometry(spec)
+        sides = sides if sides is not None else wall_sides(spec, building)
     except Exception:
         return []
     findings: List[Finding] = []

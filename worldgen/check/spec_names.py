@@ -43,7 +43,7 @@ def _spec_sides(spec) -> list[tuple[str, tuple, tuple]]:
 
 
 def _on_wall(wall, p, q) -> bool:
-    """Whether the side p–q lies on the wall's centre-line and overlaps it by more than a join."""
+    """Whether the side p–q lies on the wall's centre-line and overlaps it by more than a join does."""
     (ax, ay), (bx, by) = wall.start, wall.end
     length = math.hypot(bx - ax, by - ay)
     if length < 1e-9:
@@ -53,16 +53,19 @@ def _on_wall(wall, p, q) -> bool:
         if abs((x - ax) * uy - (y - ay) * ux) > ON_LINE:
             return False
     s0, s1 = sorted(((p[0] - ax) * ux + (p[1] - ay) * uy, (q[0] - ax) * ux + (q[1] - ay) * uy))
-    return min(s1, length) - max(s0, 0.0) > wall.thickness
+    return min(s1, length) - max(s0, 0.0) > min(wall.thickness, (s1 - s0) / 2)
 
 
-def wall_sides(spec) -> Dict[int, list]:
+def wall_sides(spec, building=None) -> Dict[int, list]:
     """Each built wall's index → the spec's sides on it, as (name, from, to); a corner filler → [(its name, None,
-    None)]."""
+    None)]. ``building`` is the spec's geometry when already built."""
+    import shapely
+
     from ..geometry.building import build_geometry
 
-    building = build_geometry(spec)
+    building = building if building is not None else build_geometry(spec)
     sides = _spec_sides(spec)
+    tree = shapely.STRtree([shapely.LineString([p, q]) for _, p, q in sides])
     found: Dict[int, list] = {}
     for wall in building.walls:
         if wall.filler:
@@ -70,7 +73,8 @@ def wall_sides(spec) -> Dict[int, list]:
             found[wall.index] = [(f"the filler at a sharp corner of room {rooms}" if rooms else "a corner filler",
                                   None, None)]
             continue
-        on = [side for side in sides if _on_wall(wall, side[1], side[2])]
+        near = tree.query(shapely.LineString([wall.start, wall.end]).buffer(2 * ON_LINE, quad_segs=1))
+        on = [sides[i] for i in sorted(int(i) for i in near) if _on_wall(wall, sides[i][1], sides[i][2])]
         if on:
             found[wall.index] = on
     return found
@@ -106,15 +110,16 @@ def wall_names(spec) -> Dict[int, str]:
 _POINT = re.compile(r"\((-?\d+(?:\.\d+)?), (-?\d+(?:\.\d+)?)\)")
 
 
-def rename_findings(findings: List[Finding], spec, near=None) -> List[Finding]:
+def rename_findings(findings: List[Finding], spec, near=None, sides=None) -> List[Finding]:
     """``findings`` with the building's ``NAME/Wall_N/Wall_N_Collision[_i]`` labels replaced by the spec's names
     of those walls (the sides at the first point the finding names, else at ``near`` — the spawn, where the
     robot touches things — when a straight wall runs along several); a gap "between" two pieces of one wall is
-    "in" that wall."""
-    try:
-        sides = wall_sides(spec)
-    except Exception:   # a spec that does not build has no walls to name (its own error says why)
-        return findings
+    "in" that wall. ``sides``: :func:`wall_sides` when already known."""
+    if sides is None:
+        try:
+            sides = wall_sides(spec)
+        except Exception:   # a spec that does not build has no walls to name (its own error says why)
+            return findings
     if not sides:
         return findings
     label = re.escape(spec.name) + r"/Wall_(\d+)/Wall_\d+_Collision(?:_\d+)?"

@@ -376,12 +376,18 @@ def _named(results: list[Result], job: Job) -> list[Result]:
     spec = job.floorplan if job.floorplan is not None else job.names_from
     if spec is None:
         return results
+    from ..geometry.building import build_geometry
     from .spec_lint import lint_spec
-    from .spec_names import rename_findings
+    from .spec_names import rename_findings, wall_sides
 
-    extra = lint_spec(spec)
+    try:
+        building = build_geometry(spec)
+    except SpecError:   # a spec beside a world that no longer builds: nothing to name
+        return results
+    sides = wall_sides(spec, building)
+    extra = lint_spec(spec, building, sides)
     for r in results:
-        r.findings = rename_findings(r.findings, spec, r.spawn[:2] if r.spawn else None) + list(extra)
+        r.findings = rename_findings(r.findings, spec, r.spawn[:2] if r.spawn else None, sides) + list(extra)
     return results
 
 
