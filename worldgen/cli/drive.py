@@ -34,7 +34,8 @@ class FiniteFloat(click.FloatRange):
 @click.option("--robot", default=None, metavar="burger|waffle|waffle_pi|FILE",
               help="Robot model, or a .urdf/.urdf.xacro file. Default: the spec's, else burger.")
 @click.option("--spawn", default=None, metavar="X,Y[,YAW]",
-              help="Spawn pose in metres and radians. Default: the spec's robot entry, else 0,0,0.")
+              help="Spawn pose in metres and radians. Default: the launch file's or spec's, else the deepest free point "
+                   "of the largest closed room.")
 @click.option("--target", type=FiniteFloat(min=0.0, min_open=True), default=0.5, show_default=True,
               help="Stop-at-wall: distance to stop at (m).")
 @click.option("--kp", type=FiniteFloat(), multiple=True,

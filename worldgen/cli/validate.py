@@ -15,7 +15,8 @@ from ..core.errors import EXIT_FAILED, EXIT_OK
 @click.option("--robot", default=None, metavar="burger|waffle|waffle_pi|FILE",
               help="Robot model, or a .urdf/.urdf.xacro file. Default: the launch file's or spec's, else burger.")
 @click.option("--spawn", default=None, metavar="X,Y[,YAW]",
-              help="Spawn pose in metres and radians. Default: the launch file's, else the spec's, else 0,0.")
+              help="Spawn pose in metres and radians. Default: the launch file's, else the spec's, else the deepest "
+                   "free point of each closed room.")
 @click.option("--launch", "launch_file", type=click.Path(path_type=Path), default=None, metavar="FILE",
               help="Take the spawn pose and robot model from this launch file, and check that it starts the world.")
 @click.option("--model-path", "model_paths", multiple=True, type=click.Path(path_type=Path), metavar="DIR",
