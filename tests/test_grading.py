@@ -283,3 +283,14 @@ def test_the_readme_text_report_is_what_validate_prints(tmp_path):
     proc = run_readme_command(block.group(1), tmp_path)
     assert proc.stdout == block.group(2)
     assert proc.returncode == 1 and (tmp_path / "report.xml").is_file()
+
+
+def test_a_launch_file_that_only_runs_nodes_is_not_failed_for_having_no_world(tmp_path):
+    cli("scaffold", "lab_b", "rospy", "-p", tmp_path, check_code=0)
+    (tmp_path / "lab_b" / "launch" / "talk.launch").write_text(
+        '<launch>\n  <node pkg="rospy_tutorials" type="talker" name="talker"/>\n</launch>\n')
+    out = cli("validate", tmp_path, "--format", "json")
+    package, launch = json.loads(out.stdout)["results"]
+    assert out.exit_code == 0 and launch["ok"] is True and launch["checks"] == ["launch"]
+    assert [f["message"] for f in launch["findings"] if f["check"] == "launch"] == [
+        "starts no Gazebo world and spawns no robot (nodes only): nothing to simulate"]

@@ -198,7 +198,6 @@ def _read_launch(path: Path):
 def _package_jobs(folder: Path, options: Options) -> list[Job]:
     """A package gives a row of its own (the package check) and one job per launch file."""
     from ..ros.package_check import package_launch_files
-
     from .discover import is_metapackage
 
     findings = _package_findings(folder)
@@ -243,6 +242,11 @@ def _launch_path_job(path: Path, display: str) -> Job:
 
 def _launch_job(path: Path, info, display: str) -> Job:
     job = Job(path=display, pre_checks=["launch"], findings=list(info.findings))
+    if _nodes_only(path, info):   # a package's launch file that runs nodes beside a world started elsewhere
+        job.package_only = True
+        job.findings.append(Finding("launch", "info", "starts no Gazebo world and spawns no robot (nodes only): "
+                                                      "nothing to simulate", where=str(path)))
+        return job
     if info.world_path is not None and Path(info.world_path).is_file():
         job.world = Path(info.world_path)
     else:
@@ -253,6 +257,17 @@ def _launch_job(path: Path, info, display: str) -> Job:
                                  "on ROS_PACKAGE_PATH?), or validate the world itself with --launch THIS_FILE"))
     _take_launch_pose(job, info, path)
     return job
+
+
+def _nodes_only(path: Path, info) -> bool:
+    """Whether a launch file has nothing to do with Gazebo: no world_name, no spawn_model, no gazebo include."""
+    if info.world_ref is not None or info.robots or info.spawn is not None:
+        return False
+    try:
+        text = path.read_text(encoding="utf-8", errors="replace")
+    except OSError:
+        return False
+    return "gazebo" not in text
 
 
 def _take_launch_pose(job: Job, info, path: Path) -> None:
