@@ -294,3 +294,17 @@ def test_a_launch_file_that_only_runs_nodes_is_not_failed_for_having_no_world(tm
     assert out.exit_code == 0 and launch["ok"] is True and launch["checks"] == ["launch"]
     assert [f["message"] for f in launch["findings"] if f["check"] == "launch"] == [
         "starts no Gazebo world and spawns no robot (nodes only): nothing to simulate"]
+
+
+@pytest.mark.parametrize("missing", ["s1", "s2"])
+def test_students_packages_of_the_same_name_each_start_their_own_world(tmp_path, missing):
+    spec = write_spec(tmp_path / "ana.yaml", ANA)
+    for student in ("s1", "s2"):
+        cli("scaffold", "my_world", "rospy", "--world", spec, "-p", tmp_path / "class" / student, check_code=0)
+    for world in (tmp_path / "class" / missing / "my_world" / "worlds").glob("*.world"):
+        world.unlink()
+    out = cli("validate", tmp_path / "class", "--skip-sim", "--format", "json")
+    verdicts = {r["path"]: r["ok"] for r in json.loads(out.stdout)["results"]}
+    launch = "my_world/launch/turtlebot3_in_ana_room.launch"
+    assert {Path(p).relative_to(tmp_path / "class").parts[0]: ok for p, ok in verdicts.items() if p.endswith(launch)} \
+        == {"s1": missing != "s1", "s2": missing != "s2"}
