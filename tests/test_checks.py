@@ -170,14 +170,24 @@ def test_good_numbers_give_no_findings_and_the_metrics():
     assert out.metrics["stop_distance_m"] == 0.51 and out.metrics["lidar_nearest_bearing_deg"] == 90.0
 
 
-def test_no_hit_beams_warn_with_the_reading_of_the_chosen_convention():
-    some = {"no_hit": 22, "no_hit_bearings_deg": [32.0], "no_hit_reading": math.inf}
-    [gazebo] = sim_findings(numbers(lidar=some), "inf").findings
-    assert gazebo.severity == "warning" and "22 of 360 beams" in gazebo.message and "read inf" in gazebo.message
-    [robot] = sim_findings(numbers(lidar={**some, "no_hit_reading": 0.0}), "zero").findings
-    assert "read 0 (as on the real robot)" in robot.message
+def test_no_hit_beams_say_once_what_they_mean_for_code_and_warn_only_when_it_matters():
+    # a few far corners out of range (any room over 3.5 m): one info line, no warning
+    corners = {"no_hit": 22, "no_hit_bearings_deg": [32.0], "no_hit_reading": math.inf, "front_no_hit": False}
+    [note] = sim_findings(numbers(lidar=corners), "inf").findings
+    assert note.message == ("22 of 360 beams see nothing within 3.5 m and read inf: only the farthest parts of the "
+                            "room are out of range") and note.severity == "info"
+    # nothing straight ahead, where a stop-at-wall node looks first: a warning
+    ahead = {**corners, "front_no_hit": True}
+    [gazebo] = sim_findings(numbers(lidar=ahead), "inf").findings
+    assert gazebo.severity == "warning" and "(straight ahead too)" in gazebo.message
+    assert "inf in Gazebo but 0 on the real robot" in gazebo.message and "code must treat both" in gazebo.message
+    [robot] = sim_findings(numbers(lidar={**ahead, "no_hit_reading": 0.0}), "zero").findings
+    assert "read 0" in robot.message and robot.severity == "warning"
+    # most beams blind: a warning, said once
     [blind] = sim_findings(numbers(lidar={"no_hit": 360}), "inf").findings
-    assert "all 360 beams hit nothing" in blind.message
+    assert blind.severity == "warning" and "all 360 beams see nothing" in blind.message
+    assert blind.message.count("Gazebo") == 1
+    assert sim_findings(numbers(lidar={"no_hit": 0}), "inf").findings == []
 
 
 def test_spin_and_stop_failures_are_errors_naming_what_was_touched():

@@ -348,7 +348,7 @@ def test_example_validates(tmp_path):
 
     result = CliRunner().invoke(main, ["validate", str(MAP_DIR / "flat.yaml"), "--format", "json"])
     assert result.exit_code == 0, result.output
-    (report,) = json.loads(result.output)["results"]
+    (report,) = json.loads(result.stdout)["results"]
     assert report["ok"] and report["metrics"]["enclosed"] is True
     checked = sdformat_check(build(tmp_path, MAP_DIR / "flat.yaml"))
     assert checked is None or checked[0], checked   # None: no libsdformat on this machine

@@ -212,7 +212,7 @@ def test_starter_spec_passes_validation_as_written(tmp_path):
     assert CliRunner().invoke(main, ["new", "lab", "-o", str(spec)]).exit_code == 0
     result = CliRunner().invoke(main, ["validate", str(spec), "--skip-sim", "--format", "json"])
     assert result.exit_code == 0, result.output
-    (report,) = json.loads(result.output)["results"]
+    (report,) = json.loads(result.stdout)["results"]
     assert report["metrics"]["enclosed"] is True and report["metrics"]["min_clearance_m"] > 0.5
 
 

@@ -72,7 +72,7 @@ def run_cli(*args):
 
 def as_json(*args):
     out = run_cli(*args, "--format", "json")
-    return out.exit_code, json.loads(out.output)
+    return out.exit_code, json.loads(out.stdout)
 
 
 # --------------------------------------------------------------------------------------------- the class room
@@ -196,7 +196,7 @@ def test_a_launch_error_does_not_stop_a_spec_being_checked(tmp_path):
 def test_text_report_is_a_table_with_findings_errors_first(tmp_path):
     bad = write_world(tmp_path / "bad.world", room_walls(4.0, gap=(0.0, 0.6)))
     out = run_cli(bad, "--skip-sim")
-    lines = out.output.splitlines()
+    lines = out.stdout.splitlines()
     assert lines[0].split()[:3] == ["file", "verdict", "enclosed"]
     assert lines[1].split()[1:3] == ["FAIL", "NO"]
     severities = [line.split()[0] for line in lines[3:] if line.startswith("    ") and not line.startswith("     ")]
@@ -288,7 +288,7 @@ def test_crashed_simulator_becomes_a_finding(tmp_path, monkeypatch):
     monkeypatch.setattr("worldgen.check.validate.SIM_JOB", "crashing_job:simulate")
     world = write_world(tmp_path / "room.world", room_walls(4.0))
     [job] = plan([world], Options())
-    result = run_job(job, Options())
+    [result] = run_job(job, Options())
     [crash] = [f for f in result.findings if f.severity == "error"]
     assert crash.message == "pybullet crashed (killed by SIGABRT) while spinning in place"
     assert result.skipped["spin"] == "the simulation did not run to the end"
@@ -355,11 +355,33 @@ def test_our_examples_pass():
         assert r["spawn_source"].startswith("from spec") and r["metrics"]["enclosed"] is True
 
 
-def test_progress_bar_only_on_a_terminal(tmp_path):
-    worlds = [write_world(tmp_path / f"r{i}.world", room_walls(4.0)) for i in range(2)]
-    proc = subprocess.run([sys.executable, "-m", "worldgen", "validate", "--skip-sim", *map(str, worlds)],
-                          capture_output=True, text=True, env=dict(os.environ))
-    assert proc.returncode == 0 and proc.stderr == ""
+def test_progress_in_a_log_is_one_line_per_file_on_stderr(tmp_path):
+    worlds = [write_world(tmp_path / f"r{i}.world", room_walls(4.0, gap=(0.0, 0.6) if i else None))
+              for i in range(3)]
+    proc = subprocess.run([sys.executable, "-m", "worldgen", "validate", "--skip-sim", "-j", "2", "--format", "json",
+                           *map(str, worlds)], capture_output=True, text=True, env=dict(os.environ))
+    assert proc.returncode == 1
+    assert len(json.loads(proc.stdout)["results"]) == 3   # stdout holds the report alone
+    lines = proc.stderr.splitlines()
+    assert sorted(line.split(" ", 1)[0] for line in lines) == ["[1/3]", "[2/3]", "[3/3]"]
+    verdicts = {line.split(" ", 2)[2]: line.split(" ", 2)[1] for line in lines}
+    assert verdicts == {str(worlds[0]): "ok", str(worlds[1]): "FAIL", str(worlds[2]): "FAIL"}
+
+
+def test_progress_bar_on_a_terminal():
+    import io
+
+    from worldgen.check.progress import progress_for
+
+    class Tty(io.StringIO):
+        def isatty(self):
+            return True
+
+    stream = Tty()
+    with progress_for(2, stream) as step:
+        step(None, [])
+        step(None, [])
+    assert "validating" in stream.getvalue() and "100%" in stream.getvalue()
 
 
 def test_unreadable_files_are_failed_checks_not_tracebacks(tmp_path):
@@ -534,7 +556,7 @@ def test_a_spec_is_checked_as_the_world_it_builds(libsdformat, tmp_path, monkeyp
     monkeypatch.setattr(writer, "spec_world_sdf",   # a wall box of two numbers
                         lambda s: re.sub(r"<box>\s*<size>[^<]*</size>", "<box><size>1 2</size>", built(s), count=1))
     [job] = plan([spec], Options(sdformat=True, skip_sim=True))
-    result = run_job(job, Options(sdformat=True, skip_sim=True))
+    [result] = run_job(job, Options(sdformat=True, skip_sim=True))
     [error] = [f for f in result.findings if f.check == "sdformat"]
     assert error.severity == "error" and error.where.startswith(f"{tmp_path / 'room.world'}:")
     assert "key[size]" in error.message and "/box/size)" in error.where

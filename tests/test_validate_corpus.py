@@ -1,7 +1,7 @@
 """Every world and model file of the shared corpus goes through ``worldgen validate``, each with a stated
 expectation derived by reading the file; several of them also through the simulator at their launch file's spawn.
 
-The spawn is the world's origin (no launch file given) unless said otherwise, the robot a burger, and
+The spawn is the world's origin (``--spawn 0,0``) unless said otherwise, the robot a burger, and
 ``--model-path corpus/gazebo_models`` stands in for the ROBOTIS models folder. Never a traceback: every file
 ends as a result with findings.
 """
@@ -104,7 +104,8 @@ def validate_json(*args) -> tuple[int, dict, str]:
 def at_origin(corpus):
     """All corpus worlds and models at the origin, geometric checks only, two at a time."""
     files = sorted((corpus / "worlds").iterdir()) + sorted((corpus / "models").iterdir())
-    code, doc, _ = validate_json(*files, "--skip-sim", "-j", "2", "--model-path", corpus / "gazebo_models")
+    code, doc, _ = validate_json(*files, "--skip-sim", "-j", "2", "--spawn", "0,0",
+                                 "--model-path", corpus / "gazebo_models")
     assert code == 1
     return {r["path"].rsplit("/", 1)[-1]: r for r in doc["results"]}, files
 
@@ -146,6 +147,19 @@ def test_corpus_details_at_origin(at_origin):
     robotis = "ROBOTIS-GIT__turtlebot3_simulations@noetic-devel__turtlebot3_gazebo_"
     for name in (robotis + "worlds_turtlebot3_world.world", robotis + "models_turtlebot3_world_model.sdf"):
         assert results[name]["metrics"]["spawn_inside"] == "ros_symbol/symbol/two_two"
+
+
+def test_without_a_spawn_the_moved_class_room_is_checked_from_its_middle(corpus):
+    """No spawn given: the room the <state> block moved to x -7.3 … -2.6 is checked from its deepest point, not
+    from the origin outside it, and the report says so."""
+    room = corpus / "worlds" / "Intro-Robotics-UChicago-Spring-2022__warmup_project__worlds_turtlebot3_in_enclosed_room.world"
+    code, doc, _ = validate_json(room, "--skip-sim")
+    [r] = doc["results"]
+    assert code == 0 and r["metrics"]["enclosed"] is True
+    # the room's inner faces are x -7.257 … -2.557, y -3.761 … 0.939: its middle is (-4.907, -1.411)
+    assert math.dist(r["spawn"][:2], (-4.907, -1.411)) < 0.05
+    assert r["spawn_source"].startswith("no spawn given: checked from the deepest free point of the world's only "
+                                        "closed room at (-4.9")
 
 
 # -------------------------------------------------------------------------------- with the simulator

@@ -181,7 +181,7 @@ def check_enclosed(scene: Scene, spawn: tuple[float, float, float], body: RobotB
                    ) -> Outcome:
     """The spawn lies in a region the walls close at LiDAR height (above the floor at ``ground``);
     otherwise, where each way out is."""
-    from ..geometry.enclosure import MAX_GAP, enclosure
+    from ..geometry.enclosure import enclosure
 
     height = ground + (body.lidar_height if body.lidar_height is not None else min(body.height, 0.182))
     found = enclosure(scene, spawn[:2], height)
@@ -215,7 +215,7 @@ def check_enclosed(scene: Scene, spawn: tuple[float, float, float], body: RobotB
             fix = "move the spawn into that room (launch x_pos/y_pos, spec robot.at or --spawn)"
         else:
             message = (f"the walls do not surround the spawn: the nearest is {found.nearest:.2f} m away and no "
-                       f"opening narrower than {MAX_GAP:g} m would close the region round it")
+                       "opening, however wide, would close the region round it")
             fix = "put the spawn inside a room, or close the room round it"
         return Outcome([Finding("enclosed", "error", message, where=where, fix=fix)], metrics)
     # The plane is open. Can the robot itself pass each gap? Its body spans the floor to its top, so a window
@@ -386,23 +386,10 @@ def sim_findings(numbers: dict, no_hit: str, ground: float = 0.0, floor: str | N
                        lidar_no_hit_value=no_hit, lidar_no_hit_reading=scan.get("no_hit_reading"),
                        lidar_nearest_m=scan["nearest"],
                        lidar_nearest_bearing_deg=scan["nearest_bearing_deg"], lidar_farthest_m=scan["farthest"])
-        reads = "inf (as in Gazebo)" if no_hit == "inf" else "0 (as on the real robot)"
-        if scan["no_hit"] == scan["beams"]:
-            findings.append(Finding(
-                "lidar", "warning",
-                f"all {scan['beams']} beams hit nothing within {scan['range_max']:g} m and read {reads}",
-                fix="put walls within 3.5 m of the spawn, or make sure code handles ranges that read "
-                    + ("inf" if no_hit == "inf" else "0")))
-        elif scan["no_hit"]:
-            findings.append(Finding(
-                "lidar", "warning",
-                f"{scan['no_hit']} of {scan['beams']} beams hit nothing within {scan['range_max']:g} m and read "
-                f"{reads}: the room is larger than the LiDAR's range or open"
-                + (f" (first such beam at {scan['no_hit_bearings_deg'][0]:.0f}°)" if scan["no_hit_bearings_deg"]
-                   else ""),
-                fix="keep walls within 3.5 m of where the robot drives, or ignore "
-                    + ("inf" if no_hit == "inf" else "zero") + " readings in code (the real LDS-01 reads 0, "
-                    "Gazebo inf)"))
+        metrics["lidar_front_no_hit"] = scan.get("front_no_hit")
+        finding = lidar_no_hit_finding(scan, no_hit)
+        if finding is not None:
+            findings.append(finding)
     spin = numbers.get("spin")
     if spin:
         metrics.update(spin_drift_m=spin["drift"], spin_turned_rad=spin["turned"], spin_touched=spin["touched"])
@@ -441,6 +428,32 @@ def sim_findings(numbers: dict, no_hit: str, ground: float = 0.0, floor: str | N
     for name, message in numbers.get("failed", {}).items():
         findings.append(Finding(name, "error", message))
     return Outcome(findings, metrics)
+
+
+NO_HIT_SHARE = 0.5   # a warning when at least this share of the beams see nothing (else one info line)
+NO_HIT_MEANING = ("a beam that hits nothing reads inf in Gazebo but 0 on the real robot (LDS-01 driver): code must "
+                  "treat both as 'nothing seen', never 0 as a wall right ahead")
+
+
+def lidar_no_hit_finding(scan: dict, no_hit: str) -> Finding | None:
+    """What beams that hit nothing mean for the student's code, said once: a warning when the beams straight ahead
+    or at least :data:`NO_HIT_SHARE` of them see nothing from the spawn (what a stop-at-wall node reads first),
+    a short info line when only some far corners are out of range (any room wider than 3.5 m has those), else
+    None."""
+    missed, beams = scan["no_hit"], scan["beams"]
+    if not missed:
+        return None
+    reads = "inf" if no_hit == "inf" else "0"
+    within = f"within {scan['range_max']:g} m"
+    if missed == beams:
+        what = f"all {beams} beams see nothing {within} and read {reads}"
+    else:
+        what = f"{missed} of {beams} beams see nothing {within} and read {reads}"
+    if scan.get("front_no_hit") or missed >= NO_HIT_SHARE * beams:
+        ahead = " (straight ahead too)" if scan.get("front_no_hit") and missed != beams else ""
+        return Finding("lidar", "warning", f"{what}{ahead}: {NO_HIT_MEANING}",
+                       fix="handle both readings in code, or spawn the robot within 3.5 m of a wall ahead")
+    return Finding("lidar", "info", f"{what}: only the farthest parts of the room are out of range")
 
 
 def _contacts_text(part: dict) -> str | None:

@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 
 from ..core.findings import SEVERITIES, Finding
 
-CHECK_ORDER = ("parse", "sdformat", "launch", "package", "enclosed", "spawn-clear", "settle", "lidar", "spin", "stop-at-wall")
+CHECK_ORDER = ("input", "parse", "sdformat", "launch", "package", "enclosed", "spawn-clear", "settle", "lidar", "spin", "stop-at-wall")
 
 
 @dataclass
@@ -34,6 +34,17 @@ class Result:
     metrics: dict = field(default_factory=dict)
     checks: list[str] = field(default_factory=list)
     skipped: dict[str, str] = field(default_factory=dict)
+    room: int | None = None   # no spawn given: the closed room (1 = largest) this result checked from
+
+    @property
+    def name(self) -> str:
+        """The path, and the room checked from when there are several: ``maze.world [room 2]``."""
+        return self.path if self.room is None else f"{self.path} [room {self.room}]"
+
+    @property
+    def verdict(self) -> str:
+        """``FAIL``, ``warn`` or ``ok``."""
+        return "FAIL" if not self.ok else ("warn" if any(f.severity == "warning" for f in self.findings) else "ok")
 
     @property
     def ok(self) -> bool:
@@ -56,7 +67,7 @@ class Result:
         return [f for _, f in indexed]
 
     def to_dict(self) -> dict:
-        return {
+        doc = {
             "path": self.path,
             "ok": self.ok,
             "robot": self.robot,
@@ -68,6 +79,9 @@ class Result:
             "findings": [f.to_dict() for f in self.sorted_findings()],
             "metrics": _clean(self.metrics),
         }
+        if self.room is not None:
+            doc["room"] = self.room
+        return doc
 
 
 def _clean(value):
@@ -116,11 +130,11 @@ def _row(r: Result) -> list[str]:
         enclosed_text = "leaks"   # the robot is held in, the LiDAR's beams are not
     if m.get("spawn_inside"):
         enclosed_text = "in wall"
-    verdict = "FAIL" if not r.ok else ("warn" if any(f.severity == "warning" for f in r.findings) else "ok")
+    verdict = r.verdict
     beams = m.get("lidar_no_hit_beams")
     drift = m.get("spin_drift_m")
     return [
-        _short(r.path),
+        _short(r.name),
         verdict,
         enclosed_text,
         _fmt_m(m.get("min_clearance_m")),
@@ -150,7 +164,10 @@ def to_text(results: list[Result]) -> str:
         if r.spawn:
             x, y, yaw = r.spawn
             robot = r.robot.replace("\\", "/").rsplit("/", 1)[-1]   # a robot file by its name
-            lines.append(f"    {robot} spawn ({x:g}, {y:g}, {yaw:g}) {r.spawn_source}".rstrip())
+            if r.spawn_source.startswith("no spawn given"):
+                lines.append(f"    {robot}: {r.spawn_source}")
+            else:
+                lines.append(f"    {robot} spawn ({x:g}, {y:g}, {yaw:g}) {r.spawn_source}".rstrip())
         for f in r.sorted_findings():
             lines.append(f"    {f.severity:<7} {f.check}: {f.message}")
             if f.where:
@@ -178,7 +195,7 @@ def to_junit(results: list[Result]) -> bytes:
             by_check[r.check_of(f)].append(f)
         if "parse" not in r.checks and not by_check["parse"]:
             del by_check["parse"]
-        classname = _xml_safe(r.path)
+        classname = _xml_safe(r.name)
         for check, found in by_check.items():
             case = etree.SubElement(suite, "testcase", classname=classname, name=check)
             tests += 1

@@ -79,6 +79,8 @@ def sim_numbers(scene: Scene, robot: str = "burger", spawn=(0.0, 0.0, 0.0), no_h
 
 
 def _scan_numbers(scan) -> dict:
+    from ..sim.lidar import front_distance
+
     true = scan.true_ranges
     hits = [(r, i) for i, r in enumerate(true) if math.isfinite(r)]
     misses = [i for i, r in enumerate(true) if not math.isfinite(r)]
@@ -90,6 +92,7 @@ def _scan_numbers(scan) -> dict:
             "nearest_bearing_deg": math.degrees(scan.angle_min + nearest[1] * scan.angle_increment)
             if nearest else None,
             "farthest": max(hits)[0] if hits else None,
+            "front_no_hit": front_distance(scan, true=True) is None,
             "ranges_sample": [scan.ranges[i] for i in range(0, len(scan.ranges), 90)]}
 
 

@@ -2,16 +2,20 @@
 
 An input is a world file (``.world``, ``.sdf``, ``model.sdf``, or anything holding ``<sdf>``), a floorplan spec
 (built to SDF on the fly, exactly as ``worldgen build`` writes it), a roslaunch file (the world it starts, its
-robot model and spawn pose) or a catkin package folder (each of its launch files). :func:`plan` turns inputs
-into :class:`Job` s, refusing bad input (missing paths, bad options) with an :class:`~worldgen.core.errors.InputError`
-before anything runs; :func:`run_job` validates one job into a :class:`~worldgen.check.report.Result`;
-:func:`validate` runs many on worker threads, each driving its own child processes for the simulator, and
-returns the results in input order. With ``sdformat`` set, libsdformat's own check runs too, in the same worker
-thread (the library in a child process of its own), so ``jobs`` run that in parallel as well.
+robot model and spawn pose), a catkin package folder (each of its launch files) or any other folder (searched for
+packages, else for worlds and specs: :mod:`worldgen.check.discover`). :func:`plan` turns inputs into :class:`Job` s;
+a path that is missing or cannot be read becomes a failed job of its own (check ``input``), and only bad options,
+or every path being bad, are an :class:`~worldgen.core.errors.InputError` before anything runs; :func:`run_job`
+validates one job into its :class:`~worldgen.check.report.Result` s; :func:`run_jobs` runs many on worker threads,
+each driving its own child processes for the simulator, and returns the results in job order. With ``sdformat``
+set, libsdformat's own check runs too, in the same worker thread (the library in a child process of its own), so
+``jobs`` run that in parallel as well.
 
 Spawn pose, first found: ``--spawn``; the launch file (``--launch``, or the input when it is one); the spec's
-``robot`` entry (the input spec, or a spec of the same name beside the world); the world's origin. The report
-says which.
+``robot`` entry (the input spec, or a spec of the same name beside the world). With none, the world is checked
+from the deepest free point of each closed room, one result per room (:mod:`worldgen.check.nospawn`). The report
+says which. Findings about a world built from a spec name the spec's rooms and walls
+(:mod:`worldgen.check.spec_names`), and the spec's own oddities are warned about (:mod:`worldgen.check.spec_lint`).
 """
 
 from __future__ import annotations
@@ -73,6 +77,7 @@ class Job:
     findings: list[Finding] = field(default_factory=list)
     pre_checks: list[str] = field(default_factory=list)
     package_only: bool = False
+    names_from: object | None = None   # the spec a world was built from (beside it): findings use its names
 
 
 # ---------------------------------------------------------------------------------------------------- options
@@ -94,14 +99,14 @@ def check_options(options: Options) -> None:
 # ------------------------------------------------------------------------------------------------------ plan
 
 def input_kind(path: Path) -> str:
-    """``package``, ``model-folder``, ``spec``, ``launch`` or ``world`` (by suffix, else by content)."""
+    """``package``, ``model-folder``, ``folder`` (any other folder), ``spec``, ``launch`` or ``world`` (by suffix,
+    else by content)."""
     if path.is_dir():
         if (path / "package.xml").is_file():
             return "package"
         if (path / "model.sdf").is_file() or (path / "model.config").is_file():
             return "model-folder"
-        raise InputError("is a folder but neither a catkin package (package.xml) nor a Gazebo model (model.config)",
-                         path=path, hint="give a world, spec or launch file, or a package folder")
+        return "folder"
     name = path.name.lower()
     if name.endswith(LAUNCH_SUFFIXES):
         return "launch"
@@ -118,33 +123,70 @@ def input_kind(path: Path) -> str:
     return "world"
 
 
-def plan(paths: Sequence[str | Path], options: Options) -> list[Job]:
-    """The jobs for ``paths`` in order (a package gives a job for its own check, then one per launch file).
-    Raises InputError for a missing path or bad options, before anything is validated."""
+def plan(paths: Sequence[str | Path], options: Options, notes: list[str] | None = None) -> list[Job]:
+    """The jobs for ``paths`` in order (a package gives a job for its own check, then one per launch file; any
+    other folder is searched for packages, else for worlds and specs: :mod:`worldgen.check.discover`, what
+    was found appended to ``notes``). A path that is missing or cannot be read is a failed job of its own
+    (check ``input``); InputError for bad options, or when every path is bad."""
     if not paths:
         raise InputError("no input given", hint="give world, spec or launch files, or package folders")
     check_options(options)
     launch_info = _read_launch(Path(options.launch)) if options.launch is not None else None
     jobs: list[Job] = []
+    errors: list[InputError] = []
     for given in paths:
-        path = Path(given)
-        if not path.exists():
-            raise InputError("no such file or folder", path=path, hint="check the path")
-        kind = input_kind(path)
-        if kind == "package":
-            jobs += _package_jobs(path, options)
-            continue
-        if kind == "launch":
-            job = _launch_path_job(path, str(given))
-        elif kind == "spec":
-            job = _spec_job(path, str(given))
-        else:
-            job = Job(path=str(given), world=path)   # read_world reads a model folder's model.sdf itself
-            if kind == "world":
-                _spec_beside(job, path)
-        if launch_info is not None:
-            _apply_launch(job, launch_info, Path(options.launch))
-        jobs.append(_apply_options(job, options))
+        try:
+            jobs += _plan_path(Path(given), str(given), options, launch_info, notes)
+        except InputError as err:
+            errors.append(err)
+            jobs.append(_input_job(str(given), err))
+    if len(errors) == len(paths):
+        raise errors[0]
+    return jobs
+
+
+def _input_job(display: str, err: InputError) -> Job:
+    """A path that cannot be validated at all, as a failed row of its own."""
+    return Job(path=display, pre_checks=["input"], package_only=True, findings=[
+        Finding("input", "error", err.message, where=display, fix=err.hint or "check the path")])
+
+
+def _plan_path(path: Path, display: str, options: Options, launch_info, notes) -> list[Job]:
+    if not path.exists():
+        raise InputError("no such file or folder", path=path, hint="check the path")
+    kind = input_kind(path)
+    if kind == "package":
+        return _package_jobs(path, options)
+    if kind == "folder":
+        return _folder_jobs(path, options, launch_info, notes)
+    if kind == "launch":
+        job = _launch_path_job(path, display)
+    elif kind == "spec":
+        job = _spec_job(path, display)
+    else:
+        job = Job(path=display, world=path)   # read_world reads a model folder's model.sdf itself
+        if kind == "world":
+            _spec_beside(job, path)
+    if launch_info is not None:
+        _apply_launch(job, launch_info, Path(options.launch))
+    return [_apply_options(job, options)]
+
+
+def _folder_jobs(folder: Path, options: Options, launch_info, notes) -> list[Job]:
+    """A folder that is no package: each package found in it, else each world, model folder and spec."""
+    from .discover import search_folder
+
+    found = search_folder(folder)
+    if notes is not None:
+        notes.append(found.note)
+    if not found.packages and not found.files:
+        raise InputError("holds no catkin package, world file or spec", path=folder,
+                         hint="give a workspace, its src/, a folder of packages, or world/spec files")
+    jobs: list[Job] = []
+    for pkg in found.packages:
+        jobs += _package_jobs(pkg, options)
+    for kind, path in found.files:
+        jobs += _plan_path(path, str(path), options, launch_info, None)
     return jobs
 
 
@@ -157,10 +199,11 @@ def _read_launch(path: Path):
 def _package_jobs(folder: Path, options: Options) -> list[Job]:
     """A package gives a row of its own (the package check) and one job per launch file."""
     from ..ros.package_check import package_launch_files
+    from .discover import is_metapackage
 
     findings = _package_findings(folder)
     launches = package_launch_files(folder)
-    if not launches:
+    if not launches and not is_metapackage(folder):
         findings.append(Finding("package", "error", "the package has no launch files",
                                 where=str(folder), fix="add a launch/ file that starts the world "
                                                        "(worldgen launch WORLD --package PKG writes one)"))
@@ -200,6 +243,11 @@ def _launch_path_job(path: Path, display: str) -> Job:
 
 def _launch_job(path: Path, info, display: str) -> Job:
     job = Job(path=display, pre_checks=["launch"], findings=list(info.findings))
+    if _nodes_only(path, info):   # a package's launch file that runs nodes beside a world started elsewhere
+        job.package_only = True
+        job.findings.append(Finding("launch", "info", "starts no Gazebo world and spawns no robot (nodes only): "
+                                                      "nothing to simulate", where=str(path)))
+        return job
     if info.world_path is not None and Path(info.world_path).is_file():
         job.world = Path(info.world_path)
     else:
@@ -210,6 +258,17 @@ def _launch_job(path: Path, info, display: str) -> Job:
                                  "on ROS_PACKAGE_PATH?), or validate the world itself with --launch THIS_FILE"))
     _take_launch_pose(job, info, path)
     return job
+
+
+def _nodes_only(path: Path, info) -> bool:
+    """Whether a launch file has nothing to do with Gazebo: no world_name, no spawn_model, no gazebo include."""
+    if info.world_ref is not None or info.robots or info.spawn is not None:
+        return False
+    try:
+        text = path.read_text(encoding="utf-8", errors="replace")
+    except OSError:
+        return False
+    return "gazebo" not in text
 
 
 def _take_launch_pose(job: Job, info, path: Path) -> None:
@@ -272,6 +331,7 @@ def _spec_beside(job: Job, world: Path) -> None:
     found = spec_beside(world)
     if found is not None:
         _take_spec_pose(job, found[1], found[0])
+        job.names_from = found[1]
 
 
 def _apply_options(job: Job, options: Options) -> Job:
@@ -279,9 +339,7 @@ def _apply_options(job: Job, options: Options) -> Job:
         job.spawn, job.spawn_source = options.spawn, "from --spawn"
     if options.robot is not None:
         job.robot, job.robot_source = options.robot, "from --robot"
-    if job.spawn is None:
-        job.spawn, job.spawn_source = (0.0, 0.0, 0.0), "at the world's origin (no --spawn, launch file or spec)"
-    return job
+    return job   # no spawn anywhere: each closed room's deepest point, once the world is read (nospawn)
 
 
 # ------------------------------------------------------------------------------------------------------- run
@@ -302,17 +360,18 @@ class WorldSource:
         return read_world(self.path, model_paths=model_paths)
 
 
-def run_job(job: Job, options: Options) -> Result:
+def run_job(job: Job, options: Options) -> list[Result]:
     """Validate one job: read the world, run the geometric checks here and the simulated ones on the same scene
-    in one child process. Never raises for a problem with the file: problems become findings."""
+    in one child process. Never raises for a problem with the file: problems become findings. One result, or,
+    when nothing gives a spawn, one per closed room of the world (:mod:`worldgen.check.nospawn`)."""
     result = Result(path=job.path, spawn=job.spawn, spawn_source=job.spawn_source, robot=job.robot,
                     robot_source=job.robot_source, findings=list(job.findings), checks=list(job.pre_checks))
     if job.package_only:
         result.spawn, result.spawn_source = None, ""
-        return result
+        return [result]
     if job.spec is not None:
         if job.floorplan is None:
-            return _skip_rest(result, "the spec cannot be read", options)
+            return [_skip_rest(result, "the spec cannot be read", options)]
         from ..sdf.writer import spec_world_sdf
 
         try:
@@ -320,11 +379,32 @@ def run_job(job: Job, options: Options) -> Result:
         except SpecError as err:
             result.checks.append("parse")
             result.findings.append(_parse_error(err, job.spec))
-            return _skip_rest(result, "the spec cannot be built", options)
-        return _run_world(result, source, options)
+            return [_skip_rest(result, "the spec cannot be built", options)]
+        return _named(_run_world(result, source, options), job)
     if job.world is None:
-        return _skip_rest(result, "no world to read", options)
-    return _run_world(result, WorldSource(job.world), options)
+        return [_skip_rest(result, "no world to read", options)]
+    return _named(_run_world(result, WorldSource(job.world), options), job)
+
+
+def _named(results: list[Result], job: Job) -> list[Result]:
+    """Findings about a world built from a spec speak of the spec's rooms and walls (and its own checks of the
+    spec are added): :mod:`worldgen.check.spec_names`, :mod:`worldgen.check.spec_lint`."""
+    spec = job.floorplan if job.floorplan is not None else job.names_from
+    if spec is None:
+        return results
+    from ..geometry.building import build_geometry
+    from .spec_lint import lint_spec
+    from .spec_names import rename_findings, wall_sides
+
+    try:
+        building = build_geometry(spec)
+    except SpecError:   # a spec beside a world that no longer builds: nothing to name
+        return results
+    sides = wall_sides(spec, building)
+    extra = lint_spec(spec, building, sides)
+    for r in results:
+        r.findings = rename_findings(r.findings, spec, r.spawn[:2] if r.spawn else None, sides) + list(extra)
+    return results
 
 
 def _parse_error(err, path: Path) -> Finding:
@@ -347,13 +427,13 @@ def _skip_rest(result: Result, why: str, options: Options) -> Result:
     return result
 
 
-def _run_world(result: Result, source: WorldSource, options: Options) -> Result:
+def _run_world(result: Result, source: WorldSource, options: Options) -> list[Result]:
     """Read the world and check it, with a temporary folder of the job's own (only this user can read it)."""
     with tempfile.TemporaryDirectory(prefix="worldgen_validate_") as tmp:
         return _check_world(result, source, options, Path(tmp))
 
 
-def _check_world(result: Result, source: WorldSource, options: Options, tmp: Path) -> Result:
+def _check_world(result: Result, source: WorldSource, options: Options, tmp: Path) -> list[Result]:
     result.checks.append("parse")
     try:
         scene = source.read(tuple(options.model_paths))
@@ -363,10 +443,25 @@ def _check_world(result: Result, source: WorldSource, options: Options, tmp: Pat
     if options.sdformat:   # even when our reader gave up: libsdformat may say more about why
         _sdformat(result, source, options, tmp)
     if scene is None:
-        return _skip_rest(result, "the world cannot be read", options)
+        return [_skip_rest(result, "the world cannot be read", options)]
     outcome = check_parse(scene)
     result.findings += outcome.findings
     result.metrics.update(outcome.metrics)
+    if result.spawn is not None:
+        return [_check_from(result, scene, options, tmp)]
+    from .nospawn import default_spawns
+
+    results = []
+    for place in default_spawns(scene, result.robot):
+        one = dc_replace(result, spawn=place.spawn, spawn_source=place.source, room=place.room,
+                         findings=list(result.findings) + list(place.findings), checks=list(result.checks),
+                         skipped=dict(result.skipped), metrics=dict(result.metrics))
+        results.append(_check_from(one, scene, options, tmp))
+    return results
+
+
+def _check_from(result: Result, scene, options: Options, tmp: Path) -> Result:
+    """The checks of ``scene`` from the result's spawn."""
     body = robot_body(result.robot)
     ground, floor = floor_under(scene, result.spawn)
     result.metrics.update(floor)
@@ -475,25 +570,26 @@ def _exit_text(rc: int | None) -> str:
 
 
 def run_jobs(planned: Sequence[Job], options: Options, workers: int = 1,
-             progress: Callable[[Result], None] | None = None) -> list[Result]:
+             progress: Callable[[Job, list[Result]], None] | None = None) -> list[Result]:
     """Run planned jobs on ``workers`` threads (each drives its own simulator processes); results in job order,
-    ``progress`` called as each one finishes."""
+    ``progress(job, its results)`` called as each job finishes."""
     if workers <= 1 or len(planned) <= 1:
         results = []
         for job in planned:
-            results.append(run_job(job, options))
+            done = run_job(job, options)
+            results += done
             if progress:
-                progress(results[-1])
+                progress(job, done)
         return results
     with ThreadPoolExecutor(max_workers=workers) as pool:
-        futures = [pool.submit(run_job, job, options) for job in planned]
+        futures = {pool.submit(run_job, job, options): job for job in planned}
         if progress:
             for future in as_completed(futures):
-                progress(future.result())
-        return [f.result() for f in futures]
+                progress(futures[future], future.result())
+        return [r for f in futures for r in f.result()]
 
 
 def validate(paths: Sequence[str | Path], options: Options = Options(), jobs: int = 1,
-             progress: Callable[[Result], None] | None = None) -> list[Result]:
+             progress: Callable[[Job, list[Result]], None] | None = None) -> list[Result]:
     """:func:`plan` then :func:`run_jobs`: every input validated, results in input order."""
     return run_jobs(plan(paths, options), options, jobs, progress)

@@ -35,7 +35,8 @@ class FiniteFloat(click.FloatRange):
 @click.option("--robot", default=None, metavar="burger|waffle|waffle_pi|FILE",
               help="Robot model, or a .urdf/.urdf.xacro file. Default: the spec's, else burger.")
 @click.option("--spawn", default=None, metavar="X,Y[,YAW]",
-              help="Spawn pose in metres and radians. Default: the spec's robot entry, else 0,0,0.")
+              help="Spawn pose in metres and radians. Default: the launch file's or spec's, else the deepest free point "
+                   "of the largest closed room.")
 @click.option("--target", type=FiniteFloat(min=0.0, min_open=True), default=stoplaw.TARGET, show_default=True,
               help="Stop-at-wall: distance to stop at (m).")
 @click.option("--kp", type=FiniteFloat(), multiple=True,
@@ -70,7 +71,8 @@ class FiniteFloat(click.FloatRange):
 @click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True)
 def drive(world, behaviour, robot, spawn, target, kp, ki, kd, duration, max_speed, stop_band, omega, rate,
           front_angle, tolerance, lidar_no_hit, model_paths, plot, csv_path, force, fmt):
-    """Run a sensory-motor exercise in WORLD (a .world/.sdf file or a floorplan spec) and report it.
+    """Run a sensory-motor exercise in WORLD (a .world/.sdf file or a floorplan spec) and report it. WORLD may
+    also be a launch file, a package or any folder: each world a launch file starts is driven from its spawn.
 
     stop-at-wall runs the generated stop_at_wall.py node's law: v = kp·e + ki·∫e + kd·de/dt (e = front LiDAR
     distance − target) clamped to [0, max-speed], full speed when nothing is ahead, stop and hold once within
@@ -80,7 +82,6 @@ def drive(world, behaviour, robot, spawn, target, kp, ki, kd, duration, max_spee
     """
     from ..core.errors import InputError, WorldgenError
     from ..core.fsio import check_free, write_files
-    from ..check.sources import load_scene, run_on_scene
     from ..sim.process import SimCrashed, SimError
     from ..core.spawnpose import parse_spawn
     from ..check.validate import input_kind
@@ -88,23 +89,23 @@ def drive(world, behaviour, robot, spawn, target, kp, ki, kd, duration, max_spee
     if not world.exists():
         raise InputError("no such file", path=world, hint="give a .world/.sdf file or a floorplan spec (.yaml)")
     kind = input_kind(world)
-    if kind not in ("world", "model-folder", "spec"):
-        raise InputError(f"is a {kind}, not a world", path=world,
-                         hint="give a .world/.sdf file or a floorplan spec (.yaml)")
     for folder in model_paths:
         if not folder.is_dir():
             raise InputError("--model-path is not a folder", path=folder, hint="give a folder of Gazebo models")
     outputs = [p for p in (plot, csv_path) if p is not None]
     check_free(outputs, force)
-    scene, spec_robot = load_scene(world, "spec" if kind == "spec" else "world", model_paths)
     request = {
-        "world": str(world), "spec_robot": spec_robot, "behaviour": behaviour,
-        "robot": _robot_arg(robot), "spawn": list(parse_spawn(spawn)) if spawn is not None else None,
-        "gains": gain_sets(kp, ki, kd), "target": target, "duration": duration, "max_speed": max_speed,
+        "behaviour": behaviour, "robot": _robot_arg(robot), "spawn": list(parse_spawn(spawn)) if spawn is not None
+        else None, "gains": gain_sets(kp, ki, kd), "target": target, "duration": duration, "max_speed": max_speed,
         "omega": omega, "rate": float(rate), "front_angle": front_angle, "no_hit": lidar_no_hit, "tolerance": tolerance,
         "stop_band": stop_band}
+    if kind in ("folder", "package", "launch"):   # every world a launch file starts, with its spawn
+        if outputs:
+            raise InputError("--plot and --csv take a single world", path=world,
+                             hint="give one world or spec file to plot, or leave out --plot/--csv")
+        sys.exit(drive_many(world, request, model_paths, fmt))
     try:
-        result = run_on_scene("worldgen.sim.exercise:drive_exercise", scene, request, SIM_TIMEOUT)
+        result = drive_one(world, kind, request, model_paths)
     except (SimCrashed, SimError) as err:
         raise WorldgenError(f"the simulation failed: {str(err).splitlines()[0]}", path=world,
                             hint="'worldgen validate' says more about the world; please report it to the worldgen "
@@ -120,6 +121,64 @@ def drive(world, behaviour, robot, spawn, target, kp, ki, kd, duration, max_spee
         write_files(files, force=force)
     click.echo(json.dumps(_finite(_summary(result)), indent=2) if fmt == "json" else text_report(result))
     sys.exit(EXIT_OK if all(run["ok"] for run in result["runs"]) else EXIT_FAILED)
+
+
+def drive_one(world: Path, kind: str, request: dict, model_paths, launch_pose=None) -> dict:
+    """Run the exercise ``request`` in one world or spec. Spawn: ``--spawn``, else ``launch_pose`` ((x, y, yaw),
+    its source), else the spec's robot, else the deepest free point of the largest closed room."""
+    from ..check.drive_targets import default_spawn
+    from ..check.sources import load_scene, run_on_scene
+
+    scene, spec_robot = load_scene(world, "spec" if kind == "spec" else "world", model_paths)
+    request = {**request, "world": str(world), "spec_robot": spec_robot}
+    note = None
+    if request["spawn"] is None and launch_pose is not None:
+        request["spawn"], note = list(launch_pose[0]), launch_pose[1]
+    elif request["spawn"] is None and spec_robot is None:
+        pose, note = default_spawn(scene, request["robot"] or "burger")
+        request["spawn"] = list(pose)
+    result = run_on_scene("worldgen.sim.exercise:drive_exercise", scene, request, SIM_TIMEOUT)
+    if note is not None:
+        result["spawn_source"] = note
+    return result
+
+
+def drive_many(path: Path, request: dict, model_paths, fmt: str) -> int:
+    """Drive in every world ``path`` holds (:func:`worldgen.check.drive_targets.drive_targets`), each from the
+    spawn its launch file gives; print one report per world (JSON: ``{"ok", "worlds": [...]}``) and return the
+    exit code: 0 when every run passed, 1 otherwise (a world that cannot be driven in is a failure, the rest
+    still run)."""
+    from ..check.drive_targets import drive_targets
+    from ..core.errors import WorldgenError
+    from ..sim.process import SimCrashed, SimError
+
+    reports, texts = [], []
+    for target in drive_targets(path):
+        failure = target.problem
+        if failure is None:
+            pose = (target.spawn, target.spawn_source) if target.spawn is not None else None
+            req = {**request, "robot": request["robot"] or target.robot}
+            try:
+                result = drive_one(target.path, target.kind, req, model_paths, pose)
+            except (SimCrashed, SimError) as err:
+                failure = f"the simulation failed: {str(err).splitlines()[0]}"
+            except WorldgenError as err:
+                failure = str(err)
+        if failure is not None:
+            reports.append({"world": target.shown, "ok": False, "error": failure})
+            texts.append(f"{request['behaviour']} in {target.shown}: FAILED: {failure}")
+            continue
+        result["world"] = target.shown
+        reports.append(_finite(_summary(result)))
+        texts.append(text_report(result))
+    ok = all(r["ok"] for r in reports)
+    if fmt == "json":
+        click.echo(json.dumps({"ok": ok, "worlds": reports}, indent=2))
+    else:
+        click.echo("\n".join(texts))
+        click.echo(f"{len(reports)} world(s): {sum(r['ok'] for r in reports)} passed, "
+                   f"{sum(not r['ok'] for r in reports)} failed")
+    return EXIT_OK if ok else EXIT_FAILED
 
 
 def _robot_arg(robot: str | None) -> str | None:
@@ -172,8 +231,10 @@ def text_report(result: dict) -> str:
     from ..sim.plot import gains_label
 
     x, y, yaw = result["spawn"]
+    source = result["spawn_source"]
+    source = source if source.startswith(("no spawn given", "from ")) else f"from {source}"
     lines = [f"{result['behaviour']} in {result['world']}: {result['robot']} at x={x:.2f} y={y:.2f} "
-             f"yaw={yaw:.2f} (from {result['spawn_source']})"]
+             f"yaw={yaw:.2f} ({source})"]
     if result["behaviour"] == "spin":
         for run in result["runs"]:
             lines.append(f"  turned {math.degrees(run['turned']):.0f}° at {run['omega']:g} rad/s: drift "

@@ -15,7 +15,8 @@ from ..core.errors import EXIT_FAILED, EXIT_OK
 @click.option("--robot", default=None, metavar="burger|waffle|waffle_pi|FILE",
               help="Robot model, or a .urdf/.urdf.xacro file. Default: the launch file's or spec's, else burger.")
 @click.option("--spawn", default=None, metavar="X,Y[,YAW]",
-              help="Spawn pose in metres and radians. Default: the launch file's, else the spec's, else 0,0.")
+              help="Spawn pose in metres and radians. Default: the launch file's, else the spec's, else the deepest "
+                   "free point of each closed room.")
 @click.option("--launch", "launch_file", type=click.Path(path_type=Path), default=None, metavar="FILE",
               help="Take the spawn pose and robot model from this launch file, and check that it starts the world.")
 @click.option("--model-path", "model_paths", multiple=True, type=click.Path(path_type=Path), metavar="DIR",
@@ -28,35 +29,64 @@ from ..core.errors import EXIT_FAILED, EXIT_OK
               help="Files validated at once (each in its own simulator process).")
 @click.option("--lidar-no-hit", type=click.Choice(["inf", "zero"]), default="inf", show_default=True,
               help="What a beam that hits nothing reads: inf as in Gazebo, 0 as the real LDS-01 driver.")
+@click.option("--shard", default=None, metavar="K/N",
+              help="Validate only shard K of N (1 ≤ K ≤ N): a stable share of the planned files, for a CI matrix; "
+                   "the N shards together cover every file once.")
 @click.option("--skip-sim", is_flag=True, help="Only the geometric checks (parse, enclosed, spawn-clear).")
 @click.option("--sdformat", is_flag=True,
               help="Also libsdformat's own check of each world, where the library is installed (slow and "
                    "memory-hungry on big worlds).")
-def validate(paths, robot, spawn, launch_file, model_paths, fmt, junit, jobs, lidar_no_hit, skip_sim, sdformat):
+def validate(paths, robot, spawn, launch_file, model_paths, fmt, junit, jobs, lidar_no_hit, shard, skip_sim,
+             sdformat):
     """Check worlds for a TurtleBot3 class: the room is closed around the spawn point, the robot spawns clear
     and settles, the LiDAR sees walls, it can spin in place and stop 0.5 m before a wall.
 
-    PATH is a .world/.sdf/model.sdf file, a floorplan spec (.yaml), a launch file or a catkin package folder.
-    Exit status: 0 every check passed (warnings allowed), 1 a check failed, 2 bad input.
+    PATH is a .world/.sdf/model.sdf file, a floorplan spec (.yaml), a launch file, a catkin package folder, or any
+    folder (a workspace, its src/, a folder of submissions): searched for packages, else for worlds and specs.
+    A missing path is a failed result of its own. Progress goes to stderr (a bar on a terminal, a line per
+    file otherwise). Exit status: 0 every check passed (warnings allowed), 1 a check failed, 2 bad input.
     """
     from ..core.fsio import write_file
     from ..check.report import to_json, to_junit, to_text
     from ..core.spawnpose import parse_spawn
+    from ..check.discover import parse_shard
+    from ..check.discover import shard as take_shard
+    from ..check.progress import progress_for
     from ..check.validate import Options, plan, run_jobs
 
+    shard_k_n = parse_shard(shard) if shard is not None else None
     options = Options(robot=robot, spawn=parse_spawn(spawn) if spawn is not None else None, launch=launch_file,
                       model_paths=tuple(model_paths), lidar_no_hit=lidar_no_hit, skip_sim=skip_sim,
                       sdformat=sdformat)
-    planned = plan(paths, options)
-    if sys.stderr.isatty() and len(planned) > 1:
-        with click.progressbar(length=len(planned), label="validating", file=sys.stderr) as bar:
-            results = run_jobs(planned, options, jobs, progress=lambda _result: bar.update(1))
-    else:
-        results = run_jobs(planned, options, jobs)
+    if junit is not None:
+        _check_writable(junit)
+    notes: list[str] = []
+    planned = plan(paths, options, notes)
+    for note in notes:
+        click.echo(f"worldgen: {note}", err=True)
+    if shard_k_n is not None:
+        planned = take_shard(planned, *shard_k_n, key=lambda job: job.path)
+        click.echo(f"worldgen: shard {shard_k_n[0]}/{shard_k_n[1]}: {len(planned)} of the planned files", err=True)
+    with progress_for(len(planned)) as progress:
+        results = run_jobs(planned, options, jobs, progress=progress)
     if junit is not None:   # first: when it cannot be written, exit 2 leaves stdout empty
         write_file(junit, to_junit(results), force=True)
     click.echo(to_json(results) if fmt == "json" else to_text(results), nl=False)
     sys.exit(EXIT_OK if all(r.ok for r in results) else EXIT_FAILED)
+
+
+def _check_writable(target: Path) -> None:
+    """Refuse (InputError) a --junit path that cannot become a file, before anything runs."""
+    from ..core.errors import InputError
+
+    if target.is_dir():
+        raise InputError(f"cannot write {target}: it is a folder", hint="give a file name for --junit")
+    for parent in target.parents:
+        if parent.exists():
+            if not parent.is_dir():
+                raise InputError(f"cannot write {target}: {parent} is not a folder",
+                                 hint="give --junit a path in an existing or new folder")
+            return
 
 
 COMMANDS = [validate]

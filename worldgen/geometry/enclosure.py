@@ -28,7 +28,8 @@ from ..core.scene import Scene, Shape
 
 SLIVER = 0.0005        # every footprint grows by this much: gaps under 1 mm are closed
 MARGIN = 1.0           # the "outside" frame lies this far beyond the scene and the spawn
-MAX_GAP = 8.0          # openings wider than this are not gaps any more: the walls do not surround the spawn
+MAX_GAP = 8.0          # openings are searched up to this wide, or up to the walls' own extent when that is more
+MAX_SEARCH = 200.0     # … but never wider than this (m): beyond it the walls do not surround the spawn
 WIDTH_TOLERANCE = 0.005  # the critical radius is bisected to half this
 MAX_GAP_ROUNDS = 6     # gaps listed at most (then: "there may be more")
 CIRCLE_SEGMENTS = 16   # per quarter circle, for cylinders and spheres
@@ -346,8 +347,8 @@ class _Space:
     is reached from the outside at radius ``r`` when an outside disc covers it.
     """
 
-    def __init__(self, obstacles, frame):
-        self.obstacles, self.frame = obstacles, frame
+    def __init__(self, obstacles, frame, limit: float = MAX_GAP):
+        self.obstacles, self.frame, self.limit = obstacles, frame, limit
         self._cache: dict[float, tuple] = {}
 
     def at(self, r: float):
@@ -367,14 +368,14 @@ class _Space:
 
     def critical_radius(self, point) -> tuple[float, float] | None:
         """The radii just below and just above (to :data:`WIDTH_TOLERANCE`/2) the one that cuts ``point``
-        off; None when even MAX_GAP/2 does not, (0, 0) when it is cut off already."""
+        off; None when even ``limit``/2 does not, (0, 0) when it is cut off already."""
         if self.cut_off(point, 0.0):
             return 0.0, 0.0
         lo, hi = 0.0, 0.05
         while not self.cut_off(point, hi):
-            if hi >= MAX_GAP / 2:
+            if hi >= self.limit / 2:
                 return None
-            lo, hi = hi, min(hi * 2, MAX_GAP / 2)
+            lo, hi = hi, min(hi * 2, self.limit / 2)
         while hi - lo > WIDTH_TOLERANCE / 2:
             mid = (lo + hi) / 2
             lo, hi = (lo, mid) if self.cut_off(point, mid) else (mid, hi)
@@ -383,7 +384,7 @@ class _Space:
     def plugged(self, plug) -> _Space:
         import shapely
 
-        return _Space(shapely.union_all([self.obstacles, plug]), self.frame)
+        return _Space(shapely.union_all([self.obstacles, plug]), self.frame, self.limit)
 
 
 @dataclass
@@ -414,7 +415,7 @@ def _neck(space: _Space, point: tuple[float, float], lo: float, hi: float, print
     else:   # no disc of that size fits on the point's side at all (a room missing a whole wall)
         a, x = here, nearest_points(here, outside)[1]
         neck = (x.x, x.y)
-    ends = _gap_ends(space.obstacles, neck, (x.x - a.x, x.y - a.y))
+    ends = _gap_ends(space.obstacles, neck, (x.x - a.x, x.y - a.y), space.limit)
     if ends is None:
         return None
     e1, e2 = ends
@@ -440,7 +441,7 @@ def _channel(parts_lo, side, outside, d: float):
     return (c.x, c.y)
 
 
-def _gap_ends(obstacles, neck, outward):
+def _gap_ends(obstacles, neck, outward, limit: float = MAX_GAP):
     """The wall point nearest the neck, and the nearest one on the other side of the neck from it."""
     import shapely
     from shapely.ops import nearest_points
@@ -454,7 +455,7 @@ def _gap_ends(obstacles, neck, outward):
         if length < 1e-9:
             return None
     ux, uy = ux / length, uy / length
-    far = 4 * MAX_GAP   # the half-plane beyond the neck, away from e1
+    far = 4 * limit   # the half-plane beyond the neck, away from e1
     px, py = -uy, ux
     half = shapely.Polygon([(n.x - ux * 1e-6 + px * far, n.y - uy * 1e-6 + py * far),
                             (n.x - ux * 1e-6 - px * far, n.y - uy * 1e-6 - py * far),
@@ -486,7 +487,7 @@ MAX_DEPTH = 3   # how far the search follows a way out into further enclosed reg
 
 
 def _way_out(space: _Space, point, prints: list[Footprint], depth: int = 0) -> _Way | None:
-    """The widest way out from ``point``, or None when nothing encloses it at any scale up to MAX_GAP.
+    """The widest way out from ``point``, or None when nothing encloses it at any scale up to the space's limit.
 
     The narrowest cut between the point and the outside may lie inside the building (beside a free-standing
     partition, say). When the far side of that cut is itself a region closed at a larger scale (a disc of that
@@ -531,7 +532,7 @@ def passage_width(prints: list[Footprint], gap: Gap) -> float:
     if obstacles.covers(shapely.Point(gap.centre)):
         return 0.0
     (ax, ay), (bx, by) = gap.ends
-    ends = _gap_ends(obstacles, gap.centre, (-(by - ay), bx - ax))
+    ends = _gap_ends(obstacles, gap.centre, (-(by - ay), bx - ax), max(MAX_GAP, gap.width * 2))
     return math.dist(*ends) + 2 * SLIVER if ends is not None else math.inf
 
 
@@ -548,8 +549,9 @@ def analyse(prints: list[Footprint], spawn: tuple[float, float], height: float) 
     obstacles = obstacle_union(prints)
     if obstacles.covers(point):   # in a shape, or within SLIVER of one (a gap that thin counts as closed)
         return Enclosure(spawn, height, enclosed=None, inside=prints[closest].label, nearest=nearest)
-    frame = _frame(obstacles, spawn, MARGIN + MAX_GAP)
-    space = _Space(obstacles, frame)
+    limit = search_limit(obstacles, spawn)
+    frame = _frame(obstacles, spawn, MARGIN + limit)
+    space = _Space(obstacles, frame, limit)
     if space.cut_off(spawn, 0.0):
         region = next(c for c in space.at(0.0)[0] if c.covers(point))
         return Enclosure(spawn, height, enclosed=True, region_area=region.area,
@@ -568,6 +570,15 @@ def analyse(prints: list[Footprint], spawn: tuple[float, float], height: float) 
             more = False
             break
     return Enclosure(spawn, height, enclosed=False, gaps=tuple(gaps), nearest=nearest, rooms=rooms, more=more)
+
+
+def search_limit(obstacles, spawn) -> float:
+    """The widest opening searched for: :data:`MAX_GAP`, or the extent of the walls and the spawn together
+    (an open corridor end or a missing wall can be as wide as the building), at most :data:`MAX_SEARCH`."""
+    x0, y0, x1, y1 = obstacles.bounds
+    x0, x1 = min(x0, spawn[0]), max(x1, spawn[0])
+    y0, y1 = min(y0, spawn[1]), max(y1, spawn[1])
+    return min(MAX_SEARCH, max(MAX_GAP, math.hypot(x1 - x0, y1 - y0)))
 
 
 ROOM_MIN_AREA = 0.25   # m²: closed pockets smaller than this (inside a pillar, between joined walls) are no rooms

@@ -110,6 +110,23 @@ def deepest_point(rooms: Rooms) -> tuple[float, float] | None:
     return (point.x + 0.0, point.y + 0.0)
 
 
+def room_points(rooms: Rooms) -> list[tuple[float, float]]:
+    """The deepest free point (centre of the largest inscribed circle, to the centimetre where that still
+    fits) of every closed room the robot fits in, largest room first; [] when the world has none."""
+    import shapely
+    from shapely.ops import polylabel
+
+    points = []
+    for region in rooms.rooms():
+        point = polylabel(region, tolerance=0.002)
+        x, y = round(point.x, 2) + 0.0, round(point.y, 2) + 0.0
+        rounded = shapely.Point(x, y)
+        if not (rooms.blocked.distance(rounded) >= rooms.radius and region.covers(rounded)):
+            x, y = point.x + 0.0, point.y + 0.0
+        points.append((x, y))
+    return points
+
+
 def spawn_problem(rooms: Rooms, x: float, y: float) -> str | None:
     """Why a robot cannot spawn at (x, y) — inside a wall or obstacle, closer to one than its radius, outside
     every closed room of a world that has one — or None when it can."""

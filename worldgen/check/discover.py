@@ -1,0 +1,144 @@
+"""What a folder given to ``worldgen validate`` (or ``drive``) holds: catkin packages, else worlds and specs.
+
+Any folder is searched the way a teaching assistant would look at it: a catkin workspace (only its ``src/``), a
+workspace's ``src/``, a metapackage's folder, a folder of students' submissions, nested as deep as it goes. Packages
+are found as rospack finds them (:func:`worldgen.core.packages.crawl`: sorted, hidden folders and ``CATKIN_IGNORE``
+skipped, not entering a package). A folder holding no package is searched for world files (``.world``, ``.sdf``),
+Gazebo model folders and floorplan specs (``.yaml``, ``.yml``, ``.json``) instead; a world built from a spec beside
+it (same name) is left out, the spec standing for both. Everything comes back sorted by path, so the same folder
+gives the same plan on every machine.
+
+:func:`shard` takes a stable share of planned items for ``--shard K/N``.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Callable, List, Sequence, Tuple, TypeVar
+
+from ..core.errors import InputError
+from ..core.packages import IGNORE_MARKER, MANIFEST
+
+WORLD_SUFFIXES = (".world", ".sdf")
+SPEC_FILE_SUFFIXES = (".yaml", ".yml", ".json")
+WORKSPACE_SPACES = ("build", "devel", "install", "log", "logs")   # a workspace's generated folders: never searched
+
+T = TypeVar("T")
+
+
+@dataclass(frozen=True)
+class Found:
+    """What a folder holds: package folders, or (when it holds none) loose inputs as (kind, path) pairs, kind
+    ``world``, ``model-folder`` or ``spec``; ``note`` says it in one line."""
+
+    folder: Path
+    packages: Tuple[Path, ...] = ()
+    files: Tuple[Tuple[str, Path], ...] = ()
+
+    @property
+    def note(self) -> str:
+        if self.packages:
+            return f"{self.folder}: {_count(len(self.packages), 'catkin package')} found"
+        if self.files:
+            kinds = [k for k, _ in self.files]
+            parts = [_count(kinds.count(k), label) for k, label in
+                     (("world", "world file"), ("model-folder", "model folder"), ("spec", "spec"))
+                     if kinds.count(k)]
+            return f"{self.folder}: no catkin package; {', '.join(parts)} found"
+        return f"{self.folder}: no catkin package, world or spec found"
+
+
+def _count(n: int, what: str) -> str:
+    return f"{n} {what}{'' if n == 1 else 's'}"
+
+
+def is_metapackage(folder: str | Path) -> bool:
+    """Whether the package in ``folder`` declares ``<export><metapackage/></export>`` (REP 127)."""
+    from ..core.safexml import parse_file
+
+    root = parse_file(Path(folder) / MANIFEST)
+    return root is not None and root.find("export/metapackage") is not None
+
+
+def _is_workspace(folder: Path) -> bool:
+    return (folder / "src").is_dir() and ((folder / ".catkin_workspace").exists() or
+                                          any((folder / d).is_dir() for d in WORKSPACE_SPACES))
+
+
+def find_packages(folder: Path) -> list[Path]:
+    """The catkin packages under ``folder`` (a workspace: under its ``src/``), sorted by path."""
+    found: list[Path] = []
+    for dirpath, dirnames, filenames in os.walk(folder, followlinks=True):
+        here = Path(dirpath)
+        if IGNORE_MARKER in filenames:
+            dirnames.clear()
+            continue
+        if MANIFEST in filenames:
+            found.append(here)
+            dirnames.clear()
+            continue
+        if _is_workspace(here):
+            dirnames[:] = ["src"]
+            continue
+        dirnames[:] = sorted(d for d in dirnames if not d.startswith("."))
+        if len(found) > 10000:   # a folder as big as a disk: stop rather than walk forever
+            break
+    return sorted(set(found), key=lambda p: str(p))
+
+
+def find_loose(folder: Path) -> list[tuple[str, Path]]:
+    """World files, model folders and specs under ``folder`` (sorted by path); a world with a spec of the same
+    name beside it is left out."""
+    found: list[tuple[str, Path]] = []
+    for dirpath, dirnames, filenames in os.walk(folder):
+        here = Path(dirpath)
+        dirnames[:] = sorted(d for d in dirnames if not d.startswith("."))
+        if here != folder and ((here / "model.config").is_file() and (here / "model.sdf").is_file()):
+            found.append(("model-folder", here))
+            dirnames.clear()
+            continue
+        stems = {Path(f).stem for f in filenames if f.lower().endswith(SPEC_FILE_SUFFIXES)}
+        for name in sorted(filenames):
+            lower = name.lower()
+            if name.startswith("."):
+                continue
+            if lower.endswith(WORLD_SUFFIXES) and Path(name).stem not in stems:
+                found.append(("world", here / name))
+            elif lower.endswith(SPEC_FILE_SUFFIXES):
+                found.append(("spec", here / name))
+    return sorted(found, key=lambda item: str(item[1]))
+
+
+def search_folder(folder: str | Path) -> Found:
+    """:class:`Found` for a folder that is neither a package nor a model folder."""
+    folder = Path(folder)
+    packages = find_packages(folder)
+    if packages:
+        return Found(folder, tuple(packages))
+    return Found(folder, (), tuple(find_loose(folder)))
+
+
+# ------------------------------------------------------------------------------------------------------ shards
+
+def parse_shard(text: str) -> tuple[int, int]:
+    """``K/N`` (1 ≤ K ≤ N) → (K, N); InputError otherwise."""
+    try:
+        k_text, n_text = text.split("/")
+        k, n = int(k_text), int(n_text)
+    except ValueError:
+        raise InputError(f"bad --shard value {text!r}", hint="write K/N with whole numbers, e.g. 1/4") from None
+    if n < 1 or not 1 <= k <= n:
+        raise InputError(f"bad --shard value {text!r}: K must be between 1 and N",
+                         hint="the shards of N runners are 1/N, 2/N, … N/N")
+    return k, n
+
+
+def shard(items: Sequence[T], k: int, n: int, key: Callable[[T], str]) -> List[T]:
+    """Shard ``k`` of ``n`` of ``items``: sorted by ``key`` (a path), every n-th from the (k-1)-th. The share
+    depends only on the set of keys, never on the order items come in or on the machine; the n shards are
+    disjoint and together hold every item. Items keep their own order within the share."""
+    ranked = sorted(range(len(items)), key=lambda i: (key(items[i]), i))
+    chosen = {i for rank, i in enumerate(ranked) if rank % n == k - 1}
+    return [item for i, item in enumerate(items) if i in chosen]
