@@ -123,17 +123,6 @@ def test_every_readme_command_runs_as_written(reader_env):
     assert len(left_out) <= 6, left_out
 
 
-def test_the_readme_report_example_runs(reader_env):
-    """The text report's example command: the open room fails (exit 1), the class's room passes."""
-    work, env = reader_env
-    (command,) = re.findall(r"^\$ (worldgen validate .*)$", README, flags=re.M)
-    proc = subprocess.run(["bash", "-c", command], cwd=work, env=env, capture_output=True, text=True, timeout=300)
-    assert proc.returncode == 1, proc.stderr + proc.stdout
-    rows = {line.split()[0]: line.split()[1] for line in proc.stdout.splitlines() if line.startswith("examples/")}
-    assert rows == {"examples/broken/open_room.yaml": "FAIL", "examples/enclosed_room.yaml": "ok"}
-    assert (work / "report.xml").is_file()
-
-
 def test_the_first_command_installs_and_checks_on_a_pep668_system(tmp_path):
     """The README's first line, as written, in a copy of the repository: a venv, pip install ., build, validate
     (no `pip install` into the system's Python, which Debian and Ubuntu refuse)."""
