@@ -134,8 +134,8 @@ def test_unwritable_workspace_is_one_line_and_force_replaces_a_file(tmp_path):
     (tmp_path / "blocked" / "src").write_text("a file where the source folder goes\n")
     blocked = runner.invoke(main, ["course", "--workspace", str(tmp_path / "blocked")])
     assert blocked.exit_code == 2 and "Traceback" not in blocked.output
-    assert blocked.output.splitlines() == [f"worldgen: error: cannot write {tmp_path / 'blocked' / 'src'}: File "
-                                           "exists (check that the output folder can be created and written to)"]
+    assert blocked.output.splitlines() == [f"worldgen: error: cannot write {tmp_path / 'blocked' / 'src'}: Not "
+                                           "a directory (check that the output folder can be created and written to)"]
     (tmp_path / "ws" / "src").mkdir(parents=True)
     (tmp_path / "ws" / "src" / "intro_robo").write_text("not a folder\n")
     forced = runner.invoke(main, ["course", "--workspace", str(tmp_path / "ws"), "--force"])

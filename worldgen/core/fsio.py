@@ -200,6 +200,8 @@ def _make_folders(folder: Path) -> List[Path]:
         if p.parent == p:
             break
         p = p.parent
+    if not missing and not os.path.isdir(folder):
+        raise NotADirectoryError(errno.ENOTDIR, os.strerror(errno.ENOTDIR), str(folder))
     made = []
     for p in reversed(missing):
         try:
