@@ -57,7 +57,7 @@ def launch_command(world: Path, package: str | None, name: str | None, model: st
     if not re.fullmatch(r"[A-Za-z0-9_][A-Za-z0-9_.+-]*", launch_name):
         raise InputError(f"--name {name!r} cannot be passed to roslaunch",
                          hint="name the launch file with letters, digits, '_', '-' and '.' only")
-    pose, source = spawn_for_world(world, model, parse_spawn(spawn, z=True) if spawn else None)
+    pose, source = spawn_for_world(world, model, parse_spawn(spawn, z=True) if spawn is not None else None)
     text = launch_xml(world.name, package, model, pose, node_refs, launch_name=launch_name)
     folder = output if output is not None else (world_pkg / "launch" if world_pkg is not None else Path("."))
     target = write_file(folder / launch_name, text, force=force)
