@@ -284,3 +284,33 @@ def test_full_disk_and_read_only_disk_leave_nothing(tmp_path, small_disk):
         assert result.exit_code == 2 and "Read-only file system" in result.stderr, result.output
     assert sorted(os.listdir(small_disk)) == ["out"] and os.listdir(small_disk / "out") == ["lab.world"]
     assert (small_disk / "out" / "lab.world").read_bytes() == old
+
+
+def test_sweep_completes_a_committed_journal_and_restores_a_folder_moved_aside(tmp_path):
+    """What a run killed after its commit point leaves (made by hand here, with a PID that cannot be alive): the
+    next write into the folder completes the moves; a folder moved aside whose place is empty is put back."""
+    import json
+
+    from worldgen.core.fsio import sweep, write_file
+
+    dead = 2**22 + 12345   # above Linux's pid_max
+    out = tmp_path / "out"
+    (out / "lab").mkdir(parents=True)
+    (out / "lab.world").write_text("new world\n")                      # moved before the kill
+    (out / "lab" / "model.sdf").write_text("old model\n")               # not yet
+    waiting = out / "lab" / f".model.sdf.worldgen-tmp-{dead}-abcd1234"
+    waiting.write_text("new model\n")
+    journal = out / f".lab.world.worldgen-journal-{dead}"
+    journal.write_text(json.dumps({"force": True, "moves": [
+        [str(out / f".lab.world.worldgen-tmp-{dead}-gone0000"), str(out / "lab.world")],
+        [str(waiting), str(out / "lab" / "model.sdf")]]}))
+    uncommitted = out / f".lab.world.worldgen-tmp-{dead}-zzzz9999"
+    uncommitted.write_text("half")
+    aside = out / f".pkg.worldgen-old-{dead}"
+    (aside / "src").mkdir(parents=True)
+    sweep([out / "lab", out])
+    assert (out / "lab" / "model.sdf").read_text() == "new model\n" and (out / "lab.world").read_text() == "new world\n"
+    assert (out / "pkg" / "src").is_dir()
+    assert state(out)[1] == []
+    write_file(out / "other.txt", "x")   # an ordinary write sweeps too
+    assert sorted(os.listdir(out)) == ["lab", "lab.world", "other.txt", "pkg"]
