@@ -126,7 +126,7 @@ def yaml_text(text: str):
 
 def merge_bomb(d: Path):
     lines = ["a0: &a0 {k: 1}"]
-    for i in range(1, 8):
+    for i in range(1, 9):
         prev = f"*a{i - 1}"
         lines.append(f"a{i}: &a{i} {{<<: [{', '.join([prev] * 10)}]}}")
     text = "name: bomb\n" + "\n".join(lines) + "\n"
