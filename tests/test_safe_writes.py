@@ -67,7 +67,9 @@ def state(root: Path):
         rel = p.relative_to(root)
         if any(LEFTOVER.search(part) for part in rel.parts):
             left.append(str(rel))
-        elif p.is_file() or p.is_symlink():
+        elif p.is_symlink():
+            files[str(rel)] = ("link", os.readlink(p))
+        elif p.is_file():
             files[str(rel)] = p.read_bytes()
     return files, left
 
@@ -314,3 +316,31 @@ def test_sweep_completes_a_committed_journal_and_restores_a_folder_moved_aside(t
     assert state(out)[1] == []
     write_file(out / "other.txt", "x")   # an ordinary write sweeps too
     assert sorted(os.listdir(out)) == ["lab", "lab.world", "other.txt", "pkg"]
+
+
+def test_without_renameat2_or_hard_links_the_same_guarantees_hold(tmp_path, monkeypatch):
+    """The portable paths (no renameat2 outside Linux; no hard links on some file systems, e.g. FAT): a folder is
+    moved aside then swapped; a file is claimed by rename after a check — still never over an existing output."""
+    import errno as errno_
+
+    from worldgen.core import fsio
+    from worldgen.core.errors import OutputExistsError
+
+    monkeypatch.setattr(fsio, "_renameat2", lambda src, dst, flags: False)
+
+    def no_links(src, dst, **kwargs):
+        raise OSError(errno_.EPERM, "Operation not permitted", str(dst))
+
+    monkeypatch.setattr(fsio.os, "link", no_links)
+    fsio.write_tree(tmp_path / "pkg", {"a.txt": "old"})
+    with pytest.raises(OutputExistsError):
+        fsio.write_tree(tmp_path / "pkg", {"b.txt": "new"})
+    fsio.write_tree(tmp_path / "pkg", {"b.txt": "new"}, force=True)
+    assert os.listdir(tmp_path / "pkg") == ["b.txt"]
+    fsio.write_files({tmp_path / "x.txt": "1", tmp_path / "sub" / "y.txt": "2"})
+    (tmp_path / "z.txt").symlink_to(tmp_path / "nowhere")
+    with pytest.raises(OutputExistsError):
+        fsio.write_files({tmp_path / "w.txt": "1", tmp_path / "z.txt": "2"})
+    assert not (tmp_path / "w.txt").exists() and (tmp_path / "z.txt").is_symlink()
+    assert sorted(os.listdir(tmp_path)) == ["pkg", "sub", "x.txt", "z.txt"]
+    assert state(tmp_path)[1] == []
