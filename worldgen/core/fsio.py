@@ -1,9 +1,9 @@
 """Writing outputs so that a failure, a kill or a second writer never leaves a mix.
 
 * One file: written to a temporary file beside the target (``.NAME.worldgen-tmp-PID-XXXX``), then put in place
-  with one call: without ``force`` by ``os.link`` (fails when anything, even a dangling symbolic link, is at the
-  target, so of two writers exactly one wins); with ``force`` by ``os.replace`` (a symbolic link at the target is
-  itself replaced, its target is not touched).
+  with one call: without ``force`` by ``renameat2(RENAME_NOREPLACE)`` or ``os.link`` (both fail when anything, even
+  a dangling symbolic link, is at the target, so of two writers exactly one wins); with ``force`` by ``os.replace``
+  (a symbolic link at the target is itself replaced, its target is not touched).
 * Several files (``build --model-dir``, ``build --package``): every temporary file is written first, then a journal
   ``.NAME.worldgen-journal-PID`` listing the moves is renamed into place — the commit point — and the moves follow.
   Before the commit nothing is in place; a kill during the moves (microseconds) leaves the journal, which the next
@@ -34,6 +34,7 @@ FileData = Union[str, bytes]
 STALE_SECONDS = 15 * 60   # a worldgen run holds its staging for well under a second; older ones are leftovers
 _LEFTOVER = re.compile(r"^\.(?P<name>.+)\.worldgen-(?P<kind>tmp|journal|staging|old)-(?P<pid>\d+)(?:-[A-Za-z0-9_]*)?$")
 _RENAME_NOREPLACE, _RENAME_EXCHANGE = 1, 2
+_LIBC: dict = {}
 _FORCE_HINT = "pass --force to overwrite it, or choose another output with -o"
 
 
@@ -147,11 +148,16 @@ def _renameat2(src: Path, dst: Path, flags: int) -> bool:
         return False
     import ctypes
 
-    try:
-        fn = ctypes.CDLL(None, use_errno=True).renameat2
-    except (AttributeError, OSError):
+    fn = _LIBC.get("renameat2", False)
+    if fn is False:
+        try:
+            fn = ctypes.CDLL(None, use_errno=True).renameat2
+            fn.argtypes = [ctypes.c_int, ctypes.c_char_p, ctypes.c_int, ctypes.c_char_p, ctypes.c_uint]
+        except (AttributeError, OSError):   # a C library older than glibc 2.28
+            fn = None
+        _LIBC["renameat2"] = fn
+    if fn is None:
         return False
-    fn.argtypes = [ctypes.c_int, ctypes.c_char_p, ctypes.c_int, ctypes.c_char_p, ctypes.c_uint]
     at_fdcwd = -100
     if fn(at_fdcwd, os.fsencode(str(src)), at_fdcwd, os.fsencode(str(dst)), flags) == 0:
         return True
@@ -162,22 +168,20 @@ def _renameat2(src: Path, dst: Path, flags: int) -> bool:
 
 
 def _claim(tmp: Path, target: Path) -> None:
-    """Put the file ``tmp`` at ``target`` only if nothing is there (atomically); then drop the name ``tmp``."""
+    """Move the file ``tmp`` to ``target`` only if nothing is there, atomically: renameat2(RENAME_NOREPLACE), else a
+    hard link (then the temporary name is dropped), else — a file system with neither — a check and a rename."""
     try:
+        if _renameat2(tmp, target, _RENAME_NOREPLACE):
+            return
         os.link(tmp, target, follow_symlinks=False)
     except FileExistsError:
         raise _exists_error(target) from None
-    except OSError as err:   # a file system without hard links
+    except OSError as err:
         if err.errno not in (errno.EPERM, errno.EOPNOTSUPP, errno.ENOTSUP, errno.EMLINK, errno.EXDEV):
             raise
-        try:
-            done = _renameat2(tmp, target, _RENAME_NOREPLACE)
-        except FileExistsError:
+        if _exists(target):
             raise _exists_error(target) from None
-        if not done:   # last resort: check, then rename
-            if _exists(target):
-                raise _exists_error(target) from None
-            os.rename(tmp, target)
+        os.rename(tmp, target)
         return
     os.unlink(tmp)
 
@@ -185,7 +189,7 @@ def _claim(tmp: Path, target: Path) -> None:
 def _move(tmp: Path, target: Path, force: bool, replay: bool = False) -> None:
     if force:
         os.replace(tmp, target)
-    elif replay and _exists(target):   # a committed move already made (link done, temp name left)
+    elif replay and (os.lstat(tmp).st_nlink > 1 or _exists(target)):   # linked already (no renameat2 here)
         os.unlink(tmp)
     else:
         _claim(tmp, target)
