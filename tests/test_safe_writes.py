@@ -344,3 +344,14 @@ def test_without_renameat2_or_hard_links_the_same_guarantees_hold(tmp_path, monk
     assert not (tmp_path / "w.txt").exists() and (tmp_path / "z.txt").is_symlink()
     assert sorted(os.listdir(tmp_path)) == ["pkg", "sub", "x.txt", "z.txt"]
     assert state(tmp_path)[1] == []
+
+
+def test_two_scaffolds_without_force_one_wins(tmp_path):
+    for k in range(4):
+        procs = [start(["scaffold", "lab_pkg", "rospy", "-D", f"writer {w}", "-p", tmp_path / f"p{k}"], tmp_path)
+                 for w in (0, 1)]
+        results = [(p.wait(), p.communicate()) for p in procs]
+        assert sorted(r[0] for r in results) == [0, 2], results
+        winner = [r[0] for r in results].index(0)
+        files, left = state(tmp_path / f"p{k}")
+        assert not left and f"writer {winner}".encode() in files["lab_pkg/package.xml"]
