@@ -154,3 +154,17 @@ def test_the_law_never_reverses_and_holds_through_noise(stop_at_wall):
     pid = stop_at_wall.StopLaw(target_distance=0.5, kp=0.0, ki=0.0, kd=10.0, max_speed=0.22, stop_band=0.01)
     pid.step(1.0, 0.0)
     assert pid.step(1.5, 0.2) == 0.22 and pid.step(1.0, 0.2) == 0.0          # de/dt < 0: clamped at 0, not back
+
+def test_unwritable_workspace_is_one_line_and_force_replaces_a_file(tmp_path):
+    runner = CliRunner()
+    (tmp_path / "blocked").mkdir()
+    (tmp_path / "blocked" / "src").write_text("a file where the source folder goes\n")
+    blocked = runner.invoke(main, ["course", "--workspace", str(tmp_path / "blocked")])
+    assert blocked.exit_code == 2 and "Traceback" not in blocked.output
+    assert blocked.output.splitlines() == [f"worldgen: error: cannot write {tmp_path / 'blocked' / 'src'}: Not "
+                                           "a directory (check that the output folder can be created and written to)"]
+    (tmp_path / "ws" / "src").mkdir(parents=True)
+    (tmp_path / "ws" / "src" / "intro_robo").write_text("not a folder\n")
+    forced = runner.invoke(main, ["course", "--workspace", str(tmp_path / "ws"), "--force"])
+    assert forced.exit_code == 0, forced.output
+    assert sorted(p.name for p in (tmp_path / "ws" / "src" / "intro_robo").iterdir()) == PACKAGES

@@ -112,6 +112,15 @@ def world_picture(path: str | Path, model_paths: Sequence[str | Path] = ()) -> P
                    world_path=str(path))
 
 
+def _shown(text: str) -> str:
+    """``text`` that a font can draw: a file name that is not UTF-8 reaches Python with stand-in surrogate
+    characters (PEP 383), which matplotlib refuses; they become U+FFFD."""
+    try:
+        return text.encode("utf-8", "surrogateescape").decode("utf-8", "replace")
+    except UnicodeEncodeError:
+        return text.encode("utf-8", "replace").decode("utf-8")
+
+
 def _short(text: str, limit: int = 60) -> str:
     return text if len(text) <= limit else "…" + text[-(limit - 1):]
 
@@ -184,9 +193,9 @@ def figure(pic: Picture, rays: Sequence[Ray] | None = None):
         ax.set_ylabel("y (m)")
         ax.grid(True, color="#e6e6e6", linewidth=0.5, zorder=0)
         ax.set_axisbelow(True)
-        ax.set_title(pic.title, fontsize=12, loc="left")
+        ax.set_title(_shown(pic.title), fontsize=12, loc="left")
         if pic.subtitle:
-            ax.set_title(pic.subtitle, fontsize=8, loc="right", color="#555555")
+            ax.set_title(_shown(pic.subtitle), fontsize=8, loc="right", color="#555555")
         _scale_bar(ax, xmax - xmin)
         _legend(fig, pic, rays, drawn)
     return fig

@@ -7,6 +7,7 @@ failed".
 
 from __future__ import annotations
 
+import codecs
 import sys
 
 import click
@@ -15,7 +16,34 @@ from .. import __version__
 from ..core.errors import EXIT_BAD_INPUT, WorldgenError
 
 
+def _lenient(err: UnicodeError):
+    """Encoding error handler for stdout/stderr: a file name that is not UTF-8 (PEP 383 stand-ins) goes out as
+    its own bytes, anything else the terminal cannot show as '?' — never a crash while printing a path."""
+    if not isinstance(err, UnicodeEncodeError):
+        raise err
+    chunk = err.object[err.start:err.end]
+    if all(0xDC80 <= ord(c) <= 0xDCFF for c in chunk):
+        return bytes(ord(c) - 0xDC00 for c in chunk), err.end
+    return "?" * len(chunk), err.end
+
+
+codecs.register_error("worldgen-lenient", _lenient)
+
+
+def _lenient_streams() -> None:
+    for stream in (sys.stdout, sys.stderr):
+        if getattr(stream, "errors", None) == "strict" and hasattr(stream, "reconfigure"):
+            try:
+                stream.reconfigure(errors="worldgen-lenient")
+            except (ValueError, OSError):   # a detached or closed stream: leave it
+                pass
+
+
 class _Group(click.Group):
+    def main(self, *args, **kwargs):
+        _lenient_streams()
+        return super().main(*args, **kwargs)
+
     def invoke(self, ctx: click.Context):
         try:
             return super().invoke(ctx)

@@ -49,7 +49,7 @@ def build_command(spec: Path, out_dir: Path, sdf_version: str, model_dir: bool, 
         raise InputError(f"{spec} has no walls, so there is no building model for --model-dir",
                          hint="leave out --model-dir, or add rooms or segments")
     files = planned_files(building, out_dir, sdf_version=sdf_version, model_dir=model_dir,
-                          description=f"{building.name}: built by worldgen from {spec.name}")
+                          description=f"{building.name}: built by worldgen from {_text(spec.name)}")
     if package_dir is not None:   # the world moves into the package, beside its launch file
         from ..ros.launch import package_world_files
         from ..ros.spawn import spec_spawn
@@ -58,6 +58,13 @@ def build_command(spec: Path, out_dir: Path, sdf_version: str, model_dir: bool, 
         files.update(package_world_files(package_dir, building.name, world_text, spec_spawn(plan, world_text)))
     for path in write_files(files, force=force):
         click.echo(f"wrote {path}")
+
+
+def _text(name: str) -> str:
+    """A file name as text for a file: one that is not UTF-8 (PEP 383 stand-ins) gets U+FFFD for its odd bytes."""
+    import os
+
+    return os.fsencode(name).decode("utf-8", "replace")
 
 
 COMMANDS = [build_command]

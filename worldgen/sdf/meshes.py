@@ -3,6 +3,11 @@
 Gazebo scales a Collada mesh by its ``<unit meter=…>`` and then by the SDF ``<scale>``; it ignores ``<up_axis>``
 (the TurtleBot3 world's walls say Y_UP and stand upright). trimesh keeps the unit only as metadata, so the unit is
 read here. trimesh is imported on first use: most worlds have no meshes and ``worldgen build`` must stay fast.
+
+Text in a mesh file (an OBJ comment, a binary STL's 80-byte header, an OFF file) need not be UTF-8: trimesh then
+guesses the encoding with charset-normalizer, a dependency of worldgen for that reason. A mesh that cannot be read
+for any reason becomes the error string of :meth:`MeshCache.load`, which the reader turns into a warning naming
+the file.
 """
 
 from __future__ import annotations
@@ -17,8 +22,11 @@ _UNIT = re.compile(rb"<unit\b[^>]*\bmeter\s*=\s*[\"']([^\"']+)[\"']")
 
 def collada_unit(path: Path) -> float:
     """The ``<unit meter=…>`` of a Collada file's asset block (1.0 when absent or unreadable)."""
-    with open(path, "rb") as handle:
-        head = handle.read(8192)
+    try:
+        with open(path, "rb") as handle:
+            head = handle.read(8192)
+    except OSError:
+        return 1.0
     match = _UNIT.search(head)
     try:
         unit = float(match.group(1)) if match else 1.0
