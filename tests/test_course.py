@@ -155,6 +155,7 @@ def test_the_law_never_reverses_and_holds_through_noise(stop_at_wall):
     pid.step(1.0, 0.0)
     assert pid.step(1.5, 0.2) == 0.22 and pid.step(1.0, 0.2) == 0.0          # de/dt < 0: clamped at 0, not back
 
+
 def test_unwritable_workspace_is_one_line_and_force_replaces_a_file(tmp_path):
     runner = CliRunner()
     (tmp_path / "blocked").mkdir()

@@ -149,11 +149,15 @@ def drive_many(path: Path, request: dict, model_paths, fmt: str) -> int:
     exit code: 0 when every run passed, 1 otherwise (a world that cannot be driven in is a failure, the rest
     still run)."""
     from ..check.drive_targets import drive_targets
-    from ..core.errors import WorldgenError
+    from ..core.errors import InputError, WorldgenError
     from ..sim.process import SimCrashed, SimError
 
+    targets = drive_targets(path)
+    if not targets:
+        raise InputError("holds no world, spec, launch file or package to drive in", path=path,
+                         hint="give a .world/.sdf file, a spec, a launch file, a package or a folder holding them")
     reports, texts = [], []
-    for target in drive_targets(path):
+    for target in targets:
         failure = target.problem
         if failure is None:
             pose = (target.spawn, target.spawn_source) if target.spawn is not None else None
