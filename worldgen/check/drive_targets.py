@@ -59,3 +59,51 @@ def default_spawn(scene, robot: str) -> Tuple[Tuple[float, float, float], str]:
 
     first = default_spawns(scene, robot)[0]
     return first.spawn, first.source
+
+
+def drive_one(world: Path, kind: str, request: dict, model_paths, launch_pose=None, timeout: float = 300.0
+              ) -> dict:
+    """Run the exercise ``request`` (``worldgen.sim.exercise.drive_exercise``'s keywords) in one world or spec. Spawn: ``--spawn``, else ``launch_pose`` ((x, y, yaw),
+    its source), else the spec's robot, else the deepest free point of the largest closed room."""
+    from .sources import load_scene, run_on_scene
+
+    scene, spec_robot = load_scene(world, "spec" if kind == "spec" else "world", model_paths)
+    request = {**request, "world": str(world), "spec_robot": spec_robot}
+    note = None
+    if request["spawn"] is None and launch_pose is not None:
+        request["spawn"], note = list(launch_pose[0]), launch_pose[1]
+    elif request["spawn"] is None and spec_robot is None:
+        pose, note = default_spawn(scene, request["robot"] or "burger")
+        request["spawn"] = list(pose)
+    result = run_on_scene("worldgen.sim.exercise:drive_exercise", scene, request, timeout)
+    if note is not None:
+        result["spawn_source"] = note
+    return result
+
+
+def drive_all(path: str | Path, request: dict, model_paths, timeout: float = 300.0
+              ) -> List[Tuple[str, Optional[dict], Optional[str]]]:
+    """:func:`drive_one` in every target of ``path``: (what to call it, the result, None) each, or (…, None, why it
+    failed) for a target that cannot be driven in; InputError when ``path`` holds nothing to drive in."""
+    from ..core.errors import InputError, WorldgenError
+    from ..sim.process import SimCrashed, SimError
+
+    targets = drive_targets(path)
+    if not targets:
+        raise InputError("holds no world, spec, launch file or package to drive in", path=path,
+                         hint="give a .world/.sdf file, a spec, a launch file, a package or a folder holding them")
+    done: List[Tuple[str, Optional[dict], Optional[str]]] = []
+    for target in targets:
+        failure, result = target.problem, None
+        if failure is None:
+            pose = (target.spawn, target.spawn_source) if target.spawn is not None else None
+            req = {**request, "robot": request["robot"] or target.robot}
+            try:
+                result = drive_one(target.path, target.kind, req, model_paths, pose, timeout)
+                result["world"] = target.shown
+            except (SimCrashed, SimError) as err:
+                failure = f"the simulation failed: {str(err).splitlines()[0]}"
+            except WorldgenError as err:
+                failure = str(err)
+        done.append((target.shown, result, failure))
+    return done

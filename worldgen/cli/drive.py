@@ -84,6 +84,7 @@ def drive(world, behaviour, robot, spawn, target, kp, ki, kd, duration, max_spee
     from ..core.fsio import check_free, write_files
     from ..sim.process import SimCrashed, SimError
     from ..core.spawnpose import parse_spawn
+    from ..check.drive_targets import drive_one
     from ..check.validate import input_kind
 
     if not world.exists():
@@ -105,7 +106,7 @@ def drive(world, behaviour, robot, spawn, target, kp, ki, kd, duration, max_spee
                              hint="give one world or spec file to plot, or leave out --plot/--csv")
         sys.exit(drive_many(world, request, model_paths, fmt))
     try:
-        result = drive_one(world, kind, request, model_paths)
+        result = drive_one(world, kind, request, model_paths, timeout=SIM_TIMEOUT)
     except (SimCrashed, SimError) as err:
         raise WorldgenError(f"the simulation failed: {str(err).splitlines()[0]}", path=world,
                             hint="'worldgen validate' says more about the world; please report it to the worldgen "
@@ -123,56 +124,18 @@ def drive(world, behaviour, robot, spawn, target, kp, ki, kd, duration, max_spee
     sys.exit(EXIT_OK if all(run["ok"] for run in result["runs"]) else EXIT_FAILED)
 
 
-def drive_one(world: Path, kind: str, request: dict, model_paths, launch_pose=None) -> dict:
-    """Run the exercise ``request`` in one world or spec. Spawn: ``--spawn``, else ``launch_pose`` ((x, y, yaw),
-    its source), else the spec's robot, else the deepest free point of the largest closed room."""
-    from ..check.drive_targets import default_spawn
-    from ..check.sources import load_scene, run_on_scene
-
-    scene, spec_robot = load_scene(world, "spec" if kind == "spec" else "world", model_paths)
-    request = {**request, "world": str(world), "spec_robot": spec_robot}
-    note = None
-    if request["spawn"] is None and launch_pose is not None:
-        request["spawn"], note = list(launch_pose[0]), launch_pose[1]
-    elif request["spawn"] is None and spec_robot is None:
-        pose, note = default_spawn(scene, request["robot"] or "burger")
-        request["spawn"] = list(pose)
-    result = run_on_scene("worldgen.sim.exercise:drive_exercise", scene, request, SIM_TIMEOUT)
-    if note is not None:
-        result["spawn_source"] = note
-    return result
-
-
 def drive_many(path: Path, request: dict, model_paths, fmt: str) -> int:
-    """Drive in every world ``path`` holds (:func:`worldgen.check.drive_targets.drive_targets`), each from the
-    spawn its launch file gives; print one report per world (JSON: ``{"ok", "worlds": [...]}``) and return the
-    exit code: 0 when every run passed, 1 otherwise (a world that cannot be driven in is a failure, the rest
-    still run)."""
-    from ..check.drive_targets import drive_targets
-    from ..core.errors import InputError, WorldgenError
-    from ..sim.process import SimCrashed, SimError
+    """Drive in every world ``path`` holds (:func:`worldgen.check.drive_targets.drive_all`); print one report per
+    world (JSON: ``{"ok", "worlds": [...]}``) and return the exit code: 0 when every run passed, 1 otherwise (a
+    world that cannot be driven in is a failure, the rest still run)."""
+    from ..check.drive_targets import drive_all
 
-    targets = drive_targets(path)
-    if not targets:
-        raise InputError("holds no world, spec, launch file or package to drive in", path=path,
-                         hint="give a .world/.sdf file, a spec, a launch file, a package or a folder holding them")
     reports, texts = [], []
-    for target in targets:
-        failure = target.problem
-        if failure is None:
-            pose = (target.spawn, target.spawn_source) if target.spawn is not None else None
-            req = {**request, "robot": request["robot"] or target.robot}
-            try:
-                result = drive_one(target.path, target.kind, req, model_paths, pose)
-            except (SimCrashed, SimError) as err:
-                failure = f"the simulation failed: {str(err).splitlines()[0]}"
-            except WorldgenError as err:
-                failure = str(err)
+    for shown, result, failure in drive_all(path, request, model_paths, SIM_TIMEOUT):
         if failure is not None:
-            reports.append({"world": target.shown, "ok": False, "error": failure})
-            texts.append(f"{request['behaviour']} in {target.shown}: FAILED: {failure}")
+            reports.append({"world": shown, "ok": False, "error": failure})
+            texts.append(f"{request['behaviour']} in {shown}: FAILED: {failure}")
             continue
-        result["world"] = target.shown
         reports.append(_finite(_summary(result)))
         texts.append(text_report(result))
     ok = all(r["ok"] for r in reports)
