@@ -61,10 +61,10 @@ def probe(args: list[str], env: dict[str, str], timeout: float = 90) -> dict:
     return json.loads(proc.stdout.strip().splitlines()[-1])
 
 
-def leftovers(env: dict[str, str]) -> list[str]:
-    """Processes still running with this test's ROS_MASTER_URI in their environment (master, simulator,
-    nodes), as "pid cmdline"."""
-    marker = f"ROS_MASTER_URI={env['ROS_MASTER_URI']}".encode()
+def leftovers(env: dict[str, str] | str) -> list[str]:
+    """Processes still running with this test's ROS_MASTER_URI (or, given a string, that ``NAME=value``) in
+    their environment (master, simulator, nodes), as "pid cmdline"."""
+    marker = (env if isinstance(env, str) else f"ROS_MASTER_URI={env['ROS_MASTER_URI']}").encode()
     found = []
     for entry in Path("/proc").iterdir():
         if not entry.name.isdigit() or int(entry.name) == os.getpid():
@@ -75,12 +75,12 @@ def leftovers(env: dict[str, str]) -> list[str]:
             state = (entry / "stat").read_text().split(") ", 1)[1].split()[0]
         except OSError:
             continue
-        if marker + b"\0" in environ + b"\0" and state != "Z":
+        if (b"\0" + marker + b"\0") in (b"\0" + environ + b"\0") and state != "Z":
             found.append(f"{entry.name} {cmdline}")
     return found
 
 
-def no_leftovers(env: dict[str, str], wait: float = 5.0) -> None:
+def no_leftovers(env: dict[str, str] | str, wait: float = 5.0) -> None:
     deadline = time.monotonic() + wait
     while leftovers(env) and time.monotonic() < deadline:
         time.sleep(0.1)

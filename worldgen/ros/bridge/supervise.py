@@ -11,11 +11,32 @@ from __future__ import annotations
 import os
 import signal
 import subprocess
+import sys
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
 STOP_GRACE = 3.0   # s after SIGINT before SIGTERM, and after SIGTERM before SIGKILL
+PR_SET_PDEATHSIG = 1
+
+
+def _libc():
+    try:
+        import ctypes
+
+        return ctypes.CDLL(None, use_errno=True)
+    except (OSError, AttributeError):
+        return None
+
+
+_LIBC = _libc() if sys.platform.startswith("linux") else None
+
+
+def _die_with_parent() -> None:
+    """In the child, before exec: Linux sends it SIGTERM when the thread that started it dies, so that even a
+    parent killed with SIGKILL leaves no orphan."""
+    if _LIBC is not None:
+        _LIBC.prctl(PR_SET_PDEATHSIG, signal.SIGTERM, 0, 0, 0)
 
 
 @dataclass
@@ -90,7 +111,8 @@ class Supervisor:
         out = open(log, "wb") if log is not None else subprocess.DEVNULL
         try:
             proc = subprocess.Popen(argv, env=env, cwd=cwd, stdin=subprocess.DEVNULL, stdout=out,
-                                    stderr=None if show_errors else subprocess.STDOUT, start_new_session=True)
+                                    stderr=None if show_errors else subprocess.STDOUT, start_new_session=True,
+                                    preexec_fn=_die_with_parent if _LIBC is not None else None)
         finally:
             if log is not None:
                 out.close()

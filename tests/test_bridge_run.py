@@ -1,0 +1,138 @@
+"""`worldgen run WORLD NODE…`: students' nodes, written the ways students write them, run unmodified on the
+simulated robot with a private master; the report says what the robot did; crashes and bad input are findings or
+one-line errors, and no process outlives a run.
+
+Real rosmaster and rospy (Debian's); missing ROS packages skip, or fail under CI (see rosstubs).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import signal
+import subprocess
+import sys
+import time
+import uuid
+
+import pytest
+from conftest import CliRunner
+
+from rosstubs import SYSTEM_PYTHON
+from bridgetools import NODES, REPO, ROOM, leftovers, need_ros, no_leftovers
+from worldgen.cli import main
+from worldgen.ros.course import write_course
+
+
+@pytest.fixture
+def tag(monkeypatch, tmp_path) -> str:
+    """A marker in the environment every process of the run inherits, to find any left behind."""
+    need_ros()
+    value = uuid.uuid4().hex
+    monkeypatch.setenv("WORLDGEN_TEST_TAG", value)
+    monkeypatch.setenv("ROS_HOME", str(tmp_path / "ros_home"))
+    monkeypatch.delenv("ROS_MASTER_URI", raising=False)
+    yield f"WORLDGEN_TEST_TAG={value}"
+    no_leftovers(f"WORLDGEN_TEST_TAG={value}")
+
+
+@pytest.fixture(scope="module")
+def course(tmp_path_factory):
+    return write_course(tmp_path_factory.mktemp("course"))
+
+
+def node_running(marker: str) -> bool:
+    return any(p.split(" ", 1)[1].startswith(f"{SYSTEM_PYTHON} ") and "spin_rate_loop" in p
+               for p in leftovers(marker))
+
+
+def run(args: list[str]):
+    result = CliRunner().invoke(main, ["run", *args])
+    assert "Traceback" not in result.output, result.output
+    return result
+
+
+def test_the_courses_stop_at_wall_passes(tag, course, tmp_path):
+    node = course / "lab_a_stop_at_wall" / "scripts" / "stop_at_wall.py"
+    result = run([str(ROOM), str(node), "--task", "stop-at-wall", "--rate", "max", "--format", "json"])
+    assert result.exit_code == 0, result.output
+    doc = json.loads(result.stdout)
+    assert doc["ok"] is True and doc["task"] == "stop-at-wall" and doc["findings"] == []
+    m = doc["metrics"]
+    for key in ("cmd_vel_messages", "path_length_m", "rotation_rad", "final_pose", "final_front_distance_m",
+                "min_clearance_m", "contacts", "sim_time_s", "real_time_factor"):
+        assert key in m, key
+    assert m["final_front_distance_m"] == pytest.approx(0.5, abs=0.1)
+    assert m["cmd_vel_messages"] > 50 and m["contacts"] == [] and m["sim_time_s"] == pytest.approx(20.0)
+    assert m["path_length_m"] == pytest.approx(2.425 + 0.032 - m["final_front_distance_m"], abs=0.05)
+    assert m["real_time_factor"] > 5
+
+
+def test_callback_node_reading_zero_for_no_return(tag):
+    """A scan callback that publishes, ignoring 0 (the real LDS-01's no-return), with --lidar-no-hit zero."""
+    result = run([str(ROOM), str(NODES / "stop_zero_callback.py"), "--task", "stop-at-wall", "--rate", "max",
+                  "--lidar-no-hit", "zero", "--duration", "25"])
+    assert result.exit_code == 0, result.output
+    assert "stop-at-wall: PASS" in result.output
+
+
+def test_a_time_time_loop_runs_at_real_time(tag):
+    """Paced by the wall clock: 3 s at 0.1 m/s covers about 0.3 m only when simulated time runs at real time."""
+    result = run([str(ROOM), str(NODES / "forward_time_loop.py"), "--duration", "4.5", "--format", "json"])
+    assert result.exit_code == 0, result.output
+    m = json.loads(result.stdout)["metrics"]
+    assert m["path_length_m"] == pytest.approx(0.3, rel=0.15)
+    assert m["real_time_factor"] == pytest.approx(1.0, abs=0.1)
+
+
+def test_a_node_failing_on_import_is_a_finding(tag):
+    result = run([str(REPO / "examples" / "enclosed_room.yaml"), str(NODES / "crash_on_import.py"), "--rate", "max",
+                  "--duration", "2", "--format", "json"])
+    assert result.exit_code == 1, result.output
+    messages = [f["message"] for f in json.loads(result.stdout)["findings"]]
+    assert any("crash_on_import failed" in m and "cannot import name 'Twistt'" in m for m in messages), messages
+    assert any("no message on /cmd_vel" in m for m in messages)
+
+
+@pytest.mark.parametrize("make, expected", [
+    (lambda d: d / "missing.py", "no such node file"),
+    (lambda d: (d / "notes.txt").write_text("hello") and d / "notes.txt", "is not a Python node"),
+    (lambda d: (d / "bin.py").write_bytes(b"\x7fELF\x00\x01") and d / "bin.py", "is not a Python node"),
+])
+def test_bad_node_files_are_one_line_errors(tag, tmp_path, make, expected):
+    result = run([str(ROOM), str(make(tmp_path)), "--rate", "max", "--duration", "1"])
+    assert result.exit_code == 2
+    assert result.output.startswith("worldgen: error:") and expected in result.output
+    assert len(result.output.strip().splitlines()) == 1
+
+
+def test_a_world_that_does_not_load_is_a_one_line_error(tag, tmp_path):
+    bad = tmp_path / "bad.world"
+    bad.write_text("<sdf version='1.6'><world name='w'>")
+    result = run([str(bad), str(NODES / "spin_rate_loop.py"), "--rate", "max", "--duration", "1"])
+    assert result.exit_code == 2 and len(result.output.strip().splitlines()) == 1, result.output
+
+
+def test_ctrl_c_stops_every_process(tag, tmp_path):
+    marker = tag
+    env = dict(__import__("os").environ, PYTHONPATH=str(REPO))
+    proc = subprocess.Popen([sys.executable, "-m", "worldgen", "run", str(ROOM), str(NODES / "spin_rate_loop.py"),
+                             "--duration", "60"], env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 30
+    while not node_running(marker) and time.monotonic() < deadline:
+        time.sleep(0.1)
+    assert len(leftovers(marker)) >= 4   # worldgen, rosmaster, simulator, the node
+    proc.send_signal(signal.SIGINT)
+    out, err = proc.communicate(timeout=60)
+    assert "Traceback" not in err and proc.returncode != 0
+
+
+def test_a_killed_run_leaves_no_orphans(tag):
+    env = dict(__import__("os").environ, PYTHONPATH=str(REPO))
+    proc = subprocess.Popen([sys.executable, "-m", "worldgen", "run", str(ROOM), str(NODES / "spin_rate_loop.py"),
+                             "--duration", "60"], env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    deadline = time.monotonic() + 30
+    while not node_running(tag) and time.monotonic() < deadline:
+        time.sleep(0.1)
+    proc.kill()
+    proc.wait()
