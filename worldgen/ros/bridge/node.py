@@ -45,6 +45,8 @@ from pathlib import Path
 import numpy as np
 
 CLOCK_EVERY = 2          # physics steps per /clock and /imu message
+BACKLOG = int(os.environ.get("WG_BACKLOG", "4096"))  # bytes unread by the nodes: they are falling behind
+CHECK_EVERY = float(os.environ.get("WG_CHECK", "0.05"))  # s of real time between looks at the nodes' sockets
 ANSWER_WAIT = 0.05       # s of real time to wait for the cmd_vel answering a scan at rate max
 START_WAIT = 30.0        # s of real time to wait for the start signal
 GRAVITY = 9.8
@@ -276,7 +278,7 @@ def wait_for_start(rospy, bridge: Bridge, param: str) -> None:
         time.sleep(0.02)
 
 
-def run_loop(rospy, bridge: Bridge, rate: float, duration: float | None) -> dict:
+def run_loop(rospy, bridge: Bridge, rate: float, duration: float | None, pids=()) -> dict:
     """Step the session, publishing as the module docstring says, until ``duration`` simulated seconds have
     passed (None: until shut down). Returns the timing numbers."""
     s = bridge.session
@@ -285,7 +287,7 @@ def run_loop(rospy, bridge: Bridge, rate: float, duration: float | None) -> dict
     bridge.publish_clock()
     bridge.publish_drive()
     try:
-        _steps(rospy, bridge, rate, end_step, wall0)
+        _steps(rospy, bridge, rate, end_step, list(pids))
     except KeyboardInterrupt:
         interrupted = True
     wall = time.monotonic() - wall0
@@ -293,12 +295,71 @@ def run_loop(rospy, bridge: Bridge, rate: float, duration: float | None) -> dict
             "interrupted": interrupted}
 
 
-def _steps(rospy, bridge: Bridge, rate: float, end_step: int | None, wall0: float) -> None:
+def unread_bytes(pids: list[int]) -> int:
+    """Bytes waiting unread in the TCP sockets of processes ``pids`` (Linux: their socket inodes in /proc/PID/fd,
+    matched with the rx_queue column of /proc/net/tcp{,6}); 0 where /proc cannot tell."""
+    inodes = set()
+    for pid in pids:
+        try:
+            for fd in os.listdir(f"/proc/{pid}/fd"):
+                try:
+                    target = os.readlink(f"/proc/{pid}/fd/{fd}")
+                except OSError:
+                    continue
+                if target.startswith("socket:["):
+                    inodes.add(target[8:-1])
+        except OSError:
+            continue
+    total = 0
+    for table in ("/proc/net/tcp", "/proc/net/tcp6"):
+        try:
+            lines = Path(table).read_text().splitlines()[1:]
+        except OSError:
+            continue
+        for line in lines:
+            fields = line.split()
+            if len(fields) > 9 and fields[9] in inodes:
+                total += int(fields[4].split(":")[1], 16)
+    return total
+
+
+class Governor:
+    """Paces simulated time: at ``rate`` × real time, or, at rate 0 (max), as fast as the watched processes (the
+    nodes under test) keep up: when more than :data:`BACKLOG` bytes of messages wait unread in their sockets, they
+    are falling behind, and the pace drops below what was achieved; when nothing waits, it rises again, up to no
+    limit. (A node that lags reacts late in simulated time, which Gazebo at real time never shows.)"""
+
+    def __init__(self, rate: float, pids: list[int]):
+        self.rate, self.pids = rate, list(pids)
+        self.anchor_wall, self.anchor_sim = time.monotonic(), 0.0
+        self.limit = rate if rate > 0 else None   # None: no limit
+        self.last_check = self.anchor_wall
+        self.previous = 0
+
+    def pace(self, sim_t: float) -> None:
+        now = time.monotonic()
+        if self.rate <= 0 and self.pids and now - self.last_check >= CHECK_EVERY:
+            now_waiting = unread_bytes(self.pids)
+            waiting, self.previous = min(now_waiting, self.previous), now_waiting   # what persists, not a message in flight
+            achieved = (sim_t - self.anchor_sim) / max(now - self.anchor_wall, 1e-6)
+            if waiting > BACKLOG:
+                self.limit = max(1.0, min(achieved, self.limit or achieved) * 0.7)
+            elif waiting == 0 and self.limit is not None:
+                self.limit = self.limit * 1.5 if self.limit < 200 else None
+            self.anchor_wall, self.anchor_sim, self.last_check = now, sim_t, now
+        if self.limit is not None:
+            ahead = self.anchor_wall + (sim_t - self.anchor_sim) / self.limit - now
+            if ahead > 0.0005:
+                time.sleep(ahead)
+
+
+def _steps(rospy, bridge: Bridge, rate: float, end_step: int | None, pids: list[int]) -> None:
     s = bridge.session
     dt = s.time_step
     drive_every = s._update_every
     scan_every = max(1, round(1.0 / (s.lidar.update_rate * dt))) if s.lidar is not None else 0
     person = bridge.person
+    governor = Governor(rate, pids)
     step = 0
     while not rospy.is_shutdown() and (end_step is None or step < end_step):
         if bridge.reset_requested.is_set():
@@ -313,10 +374,7 @@ def _steps(rospy, bridge: Bridge, rate: float, end_step: int | None, wall0: floa
         if step % CLOCK_EVERY == 0:
             bridge.publish_clock()
             bridge.publish_imu(dt * CLOCK_EVERY)
-            if rate > 0:
-                ahead = wall0 + step * dt / rate - time.monotonic()
-                if ahead > 0.0005:
-                    time.sleep(ahead)
+            governor.pace(s.t)
         if step % drive_every == 0:
             bridge.publish_drive()
         if scan_every and step % scan_every == 0:
@@ -362,7 +420,8 @@ def main(argv: list[str]) -> int:
             if config.get("start_param"):
                 wait_for_start(rospy, bridge, config["start_param"])
             print("worldgen-sim: running", file=sys.stderr, flush=True)
-            timing = run_loop(rospy, bridge, float(config.get("rate") or 0.0), config.get("duration"))
+            pids = rospy.get_param("/worldgen/pids", []) if config.get("start_param") else []
+            timing = run_loop(rospy, bridge, float(config.get("rate") or 0.0), config.get("duration"), pids)
         except KeyboardInterrupt:
             pass
         finally:

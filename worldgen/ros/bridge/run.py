@@ -80,6 +80,7 @@ def run_nodes(world: World, nodes: list[NodeSpec], options: RunOptions, base_env
         _wait_for_simulator(simulator, uri)
         children = [supervisor.start(n.name, n.argv, env, log=tmp / f"node_{i}.log") for i, n in enumerate(nodes)]
         _wait_for_nodes(children, uri)
+        set_param(uri, "/worldgen/pids", [c.proc.pid for c in children])
         set_param(uri, START_PARAM, True)
         _wait_for_end(simulator, options)
         alive = {c.name: c.running for c in children}
