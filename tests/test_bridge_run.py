@@ -136,3 +136,37 @@ def test_a_killed_run_leaves_no_orphans(tag):
         time.sleep(0.1)
     proc.kill()
     proc.wait()
+
+
+BAG_READER = r"""
+import json, sys
+import rosbag
+with rosbag.Bag(sys.argv[1]) as bag:
+    info = bag.get_type_and_topic_info().topics
+    print(json.dumps({t: [i.msg_type, i.message_count] for t, i in info.items()}))
+"""
+
+
+def test_plot_csv_bag_and_junit(tag, tmp_path):
+    files = {k: tmp_path / f"run.{k}" for k in ("png", "csv", "bag", "xml")}
+    result = run([str(ROOM), str(NODES / "spin_rate_loop.py"), "--task", "spin", "--rate", "max", "--duration", "4",
+                  "--plot", str(files["png"]), "--csv", str(files["csv"]), "--bag", str(files["bag"]),
+                  "--junit", str(files["xml"])])
+    assert result.exit_code == 1, result.output          # 4 s is not two turns
+    assert "spin: FAIL" in result.output and "full turns; 2 are needed" in result.output
+    assert files["png"].read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and files["png"].stat().st_size > 10_000
+    rows = files["csv"].read_text().splitlines()
+    assert rows[0] == "t,x,y,yaw,v,omega,cmd_v,cmd_omega,front_m,nearest_m,clearance_m"
+    assert len(rows) - 1 == pytest.approx(4 * 30, abs=2)
+    assert float(rows[-1].split(",")[7]) == pytest.approx(1.0)   # the spin command in force at the end
+    proc = subprocess.run([SYSTEM_PYTHON, "-c", BAG_READER, str(files["bag"])], capture_output=True, text=True,
+                          timeout=60)
+    assert proc.returncode == 0, proc.stderr
+    topics = json.loads(proc.stdout)
+    assert topics["/scan"] == ["sensor_msgs/LaserScan", pytest.approx(20, abs=1)]
+    assert topics["/odom"][0] == "nav_msgs/Odometry" and topics["/odom"][1] == pytest.approx(120, abs=2)
+    assert topics["/cmd_vel"][0] == "geometry_msgs/Twist" and topics["/cmd_vel"][1] > 20
+    junit = files["xml"].read_text()
+    assert 'name="spin"' in junit and "<failure" in junit
+    again = run([str(ROOM), str(NODES / "spin_rate_loop.py"), "--duration", "1", "--plot", str(files["png"])])
+    assert again.exit_code == 2 and "--force" in again.output   # an existing output is kept
