@@ -170,3 +170,18 @@ def test_plot_csv_bag_and_junit(tag, tmp_path):
     assert 'name="spin"' in junit and "<failure" in junit
     again = run([str(ROOM), str(NODES / "spin_rate_loop.py"), "--duration", "1", "--plot", str(files["png"])])
     assert again.exit_code == 2 and "--force" in again.output   # an existing output is kept
+
+
+def test_rospy_missing_names_the_package(tag, tmp_path):
+    """With rospy unimportable (a stand-in that fails as a missing module does), one line names the package."""
+    blocker = tmp_path / "block" / "rospy"
+    blocker.mkdir(parents=True)
+    (blocker / "__init__.py").write_text("raise ImportError(\"No module named 'rospy'\")\n")
+    env = dict(__import__("os").environ, PYTHONPATH=f"{blocker.parent}:{REPO}")
+    for command in (["run", str(ROOM), str(NODES / "spin_rate_loop.py"), "--duration", "1"],
+                    ["sim", str(ROOM), "--duration", "1"]):
+        proc = subprocess.run([sys.executable, "-m", "worldgen", *command], env=env, capture_output=True, text=True,
+                              timeout=60)
+        assert proc.returncode == 2, proc.stderr
+        assert proc.stderr.startswith("worldgen: error: rospy (ROS 1's Python client) is not installed: install "
+                                      "python3-rospy") and len(proc.stderr.strip().splitlines()) == 1, proc.stderr

@@ -80,3 +80,25 @@ def run_text(result: Result, task: str | None, nodes: list[str]) -> str:
     verdict = "PASS" if result.ok else "FAIL"
     lines.append(f"{task or 'run'}: {verdict}")
     return "\n".join(lines) + "\n"
+
+
+def folder_text(results: list[Result]) -> str:
+    """One line per submission (verdict, node, the numbers that matter), its error findings below it."""
+    rows = [["submission", "verdict", "node", "front", "path", "turned", "contacts"]]
+    for r in results:
+        m = r.metrics
+        rows.append([r.path, "ok" if r.ok else "FAIL", m.get("node", "–"), _m(m.get("final_front_distance_m")),
+                     _m(m.get("path_length_m")),
+                     "–" if m.get("rotation_rad") is None else f"{m['rotation_rad'] / math.tau:+.2f} turns",
+                     str(len(m.get("contacts") or []))])
+    widths = [max(len(row[i]) for row in rows) for i in range(len(rows[0]))]
+    lines = []
+    for i, row in enumerate(rows):
+        lines.append("  ".join(c.ljust(w) for c, w in zip(row, widths)).rstrip())
+        if i:
+            for f in results[i - 1].sorted_findings():
+                if f.severity == "error":
+                    lines.append(f"    {f.check}: {f.message}")
+    failed = sum(not r.ok for r in results)
+    lines.append(f"{len(results)} submission(s): {len(results) - failed} passed, {failed} failed")
+    return "\n".join(lines) + "\n"

@@ -12,6 +12,7 @@ import os
 import signal
 import subprocess
 import sys
+import threading
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -97,7 +98,20 @@ def stop_group(proc: subprocess.Popen, grace: float = STOP_GRACE) -> None:
         pass
 
 
-@dataclass
+_ACTIVE: set = set()
+_ACTIVE_LOCK = threading.Lock()
+
+
+def stop_everything() -> None:
+    """Stop the children of every active supervisor (any thread's): what the main thread does when it is
+    interrupted while worker threads run."""
+    with _ACTIVE_LOCK:
+        active = list(_ACTIVE)
+    for supervisor in active:
+        supervisor.stop_all(grace=1.0)
+
+
+@dataclass(eq=False)
 class Supervisor:
     """Starts processes in their own groups and stops every one of them on exit (see the module docstring)."""
 
@@ -138,6 +152,9 @@ class Supervisor:
             stop_group(child.proc, grace)
 
     def __enter__(self) -> Supervisor:
+        with _ACTIVE_LOCK:
+            _ACTIVE.add(self)
+
         def interrupt(signum, frame):
             raise KeyboardInterrupt(f"signal {signum}")
 
@@ -152,6 +169,8 @@ class Supervisor:
         try:
             self.stop_all()
         finally:
+            with _ACTIVE_LOCK:
+                _ACTIVE.discard(self)
             for sig, old in self._old.items():
                 signal.signal(sig, old)
             self._old.clear()
