@@ -185,3 +185,18 @@ def test_rospy_missing_names_the_package(tag, tmp_path):
         assert proc.returncode == 2, proc.stderr
         assert proc.stderr.startswith("worldgen: error: rospy (ROS 1's Python client) is not installed: install "
                                       "python3-rospy") and len(proc.stderr.strip().splitlines()) == 1, proc.stderr
+
+
+def test_a_package_node_with_arguments_and_a_launch_files_node(tag, course, monkeypatch):
+    """PKG/TYPE found on ROS_PACKAGE_PATH as rosrun finds it, with a private parameter after it; and the course's
+    own launch file as both the world (its world, robot and spawn) and the nodes (its node; Gazebo's are ours)."""
+    monkeypatch.setenv("ROS_PACKAGE_PATH", str(course))
+    monkeypatch.setenv("TURTLEBOT3_MODEL", "burger")
+    result = run([str(ROOM), "lab_a_stop_at_wall/stop_at_wall.py", "_target_distance:=0.7", "--task", "stop-at-wall",
+                  "--target", "0.7", "--rate", "max", "--format", "json"])
+    assert result.exit_code == 0, result.output
+    assert json.loads(result.stdout)["metrics"]["final_front_distance_m"] == pytest.approx(0.7, abs=0.06)
+    launch = course / "lab_a_stop_at_wall" / "launch" / "stop_at_wall.launch"
+    result = run([str(launch), str(launch), "--task", "stop-at-wall", "--rate", "max"])
+    assert result.exit_code == 0, result.output
+    assert "stop_at_wall on burger at (0, 0, 0) from launch file" in result.output

@@ -57,7 +57,7 @@ def resolve_nodes(items: Sequence[str], python: str, search: Sequence[str | Path
         path = Path(item)
         if path.suffix in (".launch", ".xml") or item.endswith(".launch.xml"):
             specs += _launch_nodes(path, python, search, args)
-        elif path.suffix == ".py" or path.exists() or not _PKG_TYPE.match(item):
+        elif path.exists() or not _PKG_TYPE.match(item) or item.startswith("."):
             specs.append(_python_file(path, python, args))
         else:
             specs.append(_package_node(item, python, search, args))
@@ -107,7 +107,7 @@ def _package_node(item: str, python: str, search: Sequence[str | Path], args: li
     package, _, node_type = item.partition("/")
     folder = _index(search).find(package)
     if folder is None:
-        raise InputError(f"no package named {package!r} for node {item}",
+        raise InputError(f"{item}: no such file, and no package named {package!r}",
                          hint="put its workspace on ROS_PACKAGE_PATH (source devel/setup.bash), or give the .py file")
     found = sorted(p for p in folder.rglob(node_type) if p.is_file())
     if not found:
