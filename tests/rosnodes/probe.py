@@ -35,12 +35,14 @@ def wait_for_time():
 
 def topics(seconds):
     seen = {name: [] for name in TOPICS}
+    arrivals = {name: [] for name in TOPICS}
     first = {}
     started = time.time()
     first_scan_wall = []
 
     def keep(name):
         def callback(msg):
+            arrivals[name].append(time.time())
             if name == "/clock":
                 seen[name].append(msg.clock.to_sec())
             elif name in ("/tf", "/tf_static"):
@@ -68,7 +70,8 @@ def topics(seconds):
         if len(stamps) > 2 and stamps[-1] > stamps[0]:
             rates[name] = (len(stamps) - 1) / (stamps[-1] - stamps[0])
     counts = {name: len(s) for name, s in seen.items()}
-    print(json.dumps({"rates": rates, "counts": counts, "first": first,
+    wall_rates = {name: (len(a) - 1) / (a[-1] - a[0]) for name, a in arrivals.items() if len(a) > 2 and a[-1] > a[0]}
+    print(json.dumps({"rates": rates, "wall_rates": wall_rates, "counts": counts, "first": first,
                       "use_sim_time": rospy.get_param("/use_sim_time", None),
                       "first_scan_wall_s": first_scan_wall[0] if first_scan_wall else None}))
 
