@@ -72,7 +72,7 @@ def start_master(supervisor: Supervisor, port: int | None, env: dict[str, str], 
                          hint="stop what listens there, or set ROS_MASTER_URI to a free port")
     uri = f"http://127.0.0.1:{port}"
     child = supervisor.start("rosmaster", [command, "--core", "-p", str(port)], dict(env, ROS_MASTER_URI=uri),
-                             log=log)
+                             log=log, last=True)
     deadline = time.monotonic() + START_TIMEOUT
     while time.monotonic() < deadline:
         if not child.running:

@@ -425,6 +425,7 @@ def main(argv: list[str]) -> int:
         except KeyboardInterrupt:
             pass
         finally:
+            _ignore_interrupts()   # a second signal must not cut the trace short
             finish(rospy, bridge, config, timing)
     return 0
 
@@ -447,9 +448,22 @@ def _interrupt(signum, frame):
     raise KeyboardInterrupt(f"signal {signum}")
 
 
+def _ignore_interrupts() -> None:
+    import signal
+
+    for sig in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
+        try:
+            signal.signal(sig, signal.SIG_IGN)
+        except ValueError:
+            pass
+
+
 if __name__ == "__main__":
     import signal
 
     signal.signal(signal.SIGTERM, _interrupt)
     signal.signal(signal.SIGHUP, _interrupt)
-    sys.exit(main(sys.argv[1:]))
+    try:
+        sys.exit(main(sys.argv[1:]))
+    except KeyboardInterrupt:   # interrupted before the loop started: nothing to write
+        sys.exit(0)

@@ -49,6 +49,9 @@ def sim(world: World, *, rate: float, duration: float | None, no_hit: str,
             while child.running:
                 time.sleep(0.1)
         except KeyboardInterrupt:
+            import signal
+
+            signal.signal(signal.SIGINT, signal.SIG_IGN)   # a second Ctrl-C must not cut the stopping short
             say("worldgen sim: stopping")
             return 0
         code = child.proc.returncode

@@ -48,6 +48,7 @@ class Child:
     proc: subprocess.Popen
     log: Path | None
     stopped_by_us: bool = False
+    last: bool = False   # stopped after every other child (a master outlives its nodes)
 
     @property
     def running(self) -> bool:
@@ -119,7 +120,7 @@ class Supervisor:
     _old: dict = field(default_factory=dict)
 
     def start(self, name: str, argv: list[str], env: dict[str, str], log: Path | None = None,
-              cwd: str | Path | None = None, show_errors: bool = False) -> Child:
+              cwd: str | Path | None = None, show_errors: bool = False, last: bool = False) -> Child:
         """Start ``argv`` in a new process group; its output goes to ``log`` (None: nowhere; with
         ``show_errors``, stderr stays ours)."""
         out = open(log, "wb") if log is not None else subprocess.DEVNULL
@@ -130,7 +131,7 @@ class Supervisor:
         finally:
             if log is not None:
                 out.close()
-        child = Child(name, proc, log)
+        child = Child(name, proc, log, last=last)
         self.children.append(child)
         return child
 
@@ -140,16 +141,19 @@ class Supervisor:
         stop_group(child.proc, grace)
 
     def stop_all(self, grace: float = STOP_GRACE) -> None:
-        """Stop every child, the last started first (student nodes before the simulator before the master)."""
-        for child in reversed(self.children):
-            if child.running:
-                child.stopped_by_us = True
-                try:
-                    os.killpg(child.proc.pid, signal.SIGINT)
-                except (ProcessLookupError, PermissionError):
-                    pass
-        for child in reversed(self.children):
-            stop_group(child.proc, grace)
+        """Stop every child: all at once, then those marked ``last`` (the master, so that nodes can still leave
+        it cleanly)."""
+        for wave in (False, True):
+            children = [c for c in reversed(self.children) if c.last == wave]
+            for child in children:
+                if child.running:
+                    child.stopped_by_us = True
+                    try:
+                        os.killpg(child.proc.pid, signal.SIGINT)
+                    except (ProcessLookupError, PermissionError):
+                        pass
+            for child in children:
+                stop_group(child.proc, grace)
 
     def __enter__(self) -> Supervisor:
         with _ACTIVE_LOCK:
