@@ -185,45 +185,51 @@ class Bridge:
         vx = math.cos(yaw) * lin[0] + math.sin(yaw) * lin[1]
         vy = math.cos(yaw) * lin[1] - math.sin(yaw) * lin[0]
         self.trace["odom"].append([s.t, x, y, yaw, vx, ang[2], *s.drive.command])
-        (pl, pr), (wl, wr) = s.wheel_states()
-        odom = self.msg["Odometry"]()
-        odom.header.stamp, odom.header.frame_id, odom.child_frame_id = stamp, "odom", self.base
-        p = odom.pose.pose
-        p.position.x, p.position.y, p.position.z = x, y, z
-        p.orientation.x, p.orientation.y, p.orientation.z, p.orientation.w = quat
-        odom.pose.covariance = ODOM_COV
-        odom.twist.twist.linear.x, odom.twist.twist.linear.y = vx, vy
-        odom.twist.twist.angular.z = ang[2]
-        odom.twist.covariance = ODOM_COV
         if self.pubs["odom"].get_num_connections() or self.bag is not None:
+            odom = self.msg["Odometry"]()
+            odom.header.stamp, odom.header.frame_id, odom.child_frame_id = stamp, "odom", self.base
+            p = odom.pose.pose
+            p.position.x, p.position.y, p.position.z = x, y, z
+            p.orientation.x, p.orientation.y, p.orientation.z, p.orientation.w = quat
+            odom.pose.covariance = ODOM_COV
+            odom.twist.twist.linear.x, odom.twist.twist.linear.y = vx, vy
+            odom.twist.twist.angular.z = ang[2]
+            odom.twist.covariance = ODOM_COV
             self.pubs["odom"].publish(odom)
             if self.bag is not None:
                 with self.lock:
-                    self.bag.write("/odom", odom, stamp)
-        transforms = [self.transform("odom", self.base, (x, y, z), quat, stamp)]
-        for joint, angle in zip((s.profile.drive.left_joint, s.profile.drive.right_joint), (pl, pr)):
-            j = self.wheel_joints.get(joint)
-            if j is not None:
-                q = _quat_mul(_quat_rpy(*j.rpy), _axis_quat(self.axes.get(joint, (0, 0, 1)), angle))
-                transforms.append(self.transform(j.parent, j.child, j.xyz, q, stamp))
-        self.pubs["tf"].publish(self.msg["TFMessage"](transforms=transforms))
-        js = self.msg["JointState"]()
-        js.header.stamp = stamp
-        js.name = [s.profile.drive.left_joint, s.profile.drive.right_joint]
-        js.position, js.velocity, js.effort = [pl, pr], [wl, wr], []
-        self.pubs["joint_states"].publish(js)
+                    if self.bag is not None:
+                        self.bag.write("/odom", odom, stamp)
+        tf_wanted, js_wanted = self.pubs["tf"].get_num_connections(), self.pubs["joint_states"].get_num_connections()
+        if tf_wanted or js_wanted:
+            (pl, pr), (wl, wr) = s.wheel_states()
+        if tf_wanted:
+            transforms = [self.transform("odom", self.base, (x, y, z), quat, stamp)]
+            for joint, angle in zip((s.profile.drive.left_joint, s.profile.drive.right_joint), (pl, pr)):
+                j = self.wheel_joints.get(joint)
+                if j is not None:
+                    q = _quat_mul(_quat_rpy(*j.rpy), _axis_quat(self.axes.get(joint, (0, 0, 1)), angle))
+                    transforms.append(self.transform(j.parent, j.child, j.xyz, q, stamp))
+            self.pubs["tf"].publish(self.msg["TFMessage"](transforms=transforms))
+        if js_wanted:
+            js = self.msg["JointState"]()
+            js.header.stamp = stamp
+            js.name = [s.profile.drive.left_joint, s.profile.drive.right_joint]
+            js.position, js.velocity, js.effort = [pl, pr], [wl, wr], []
+            self.pubs["joint_states"].publish(js)
         if self.person is not None:
             self.trace["person"].append([s.t, *self.person_xy(s.t)])
 
     def publish_imu(self, dt: float) -> None:
         s = self.session
+        if not self.pubs["imu"].get_num_connections():
+            self.last_velocity = None
+            return
         lin, ang = s.base_velocity()
         accel = (0.0, 0.0, 0.0)
         if self.last_velocity is not None:
             accel = tuple((a - b) / dt for a, b in zip(lin, self.last_velocity))
         self.last_velocity = lin
-        if not self.pubs["imu"].get_num_connections():
-            return
         _, quat = s.link_pose(self.imu_link)
         import pybullet as pb
 
@@ -254,7 +260,8 @@ class Bridge:
         self.pubs["scan"].publish(msg)
         if self.bag is not None:
             with self.lock:
-                self.bag.write("/scan", msg, msg.header.stamp)
+                if self.bag is not None:
+                    self.bag.write("/scan", msg, msg.header.stamp)
         true = [r for r in scan.true_ranges if math.isfinite(r)]
         front = front_distance(scan, true=True)
         self.trace["scans"].append([s.t, scan.true_ranges[0] if math.isfinite(scan.true_ranges[0]) else None,
