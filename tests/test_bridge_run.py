@@ -8,7 +8,6 @@ Real rosmaster and rospy (Debian's); missing ROS packages skip, or fail under CI
 from __future__ import annotations
 
 import json
-import math
 import signal
 import subprocess
 import sys

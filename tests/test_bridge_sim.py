@@ -10,7 +10,6 @@ from __future__ import annotations
 import math
 import signal
 import socket
-import subprocess
 import time
 
 import pytest
