@@ -79,10 +79,22 @@ def start_master(supervisor: Supervisor, port: int | None, env: dict[str, str], 
             raise InputError(f"rosmaster could not start on port {port}: {child.last_error_line() or 'it exited'}",
                              hint="is the port free? is python3-rosmaster installed?")
         if master_answers(uri, 0.5):
+            if _master_pid(uri) != child.proc.pid:   # another master took the port first
+                supervisor.stop(child)
+                raise InputError(f"rosmaster could not start on port {port}: another master answers there",
+                                 hint="set ROS_MASTER_URI to a free port")
             return child, uri
         time.sleep(0.05)
     supervisor.stop(child)
     raise InputError(f"rosmaster did not answer on port {port} within {START_TIMEOUT:g} s")
+
+
+def _master_pid(uri: str) -> int | None:
+    try:
+        code, _, pid = xmlrpc.client.ServerProxy(uri).getPid(CALLER)
+    except (OSError, xmlrpc.client.Error):
+        return None
+    return pid if code == 1 else None
 
 
 def set_param(uri: str, name: str, value) -> None:
