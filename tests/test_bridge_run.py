@@ -12,6 +12,7 @@ import signal
 import subprocess
 import sys
 import time
+import os
 import uuid
 
 import pytest
@@ -114,7 +115,7 @@ def test_a_world_that_does_not_load_is_a_one_line_error(tag, tmp_path):
 
 def test_ctrl_c_stops_every_process(tag, tmp_path):
     marker = tag
-    env = dict(__import__("os").environ, PYTHONPATH=str(REPO))
+    env = dict(os.environ, PYTHONPATH=str(REPO))
     proc = subprocess.Popen([sys.executable, "-m", "worldgen", "run", str(ROOM), str(NODES / "spin_rate_loop.py"),
                              "--duration", "60"], env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     deadline = time.monotonic() + 30
@@ -127,7 +128,7 @@ def test_ctrl_c_stops_every_process(tag, tmp_path):
 
 
 def test_a_killed_run_leaves_no_orphans(tag):
-    env = dict(__import__("os").environ, PYTHONPATH=str(REPO))
+    env = dict(os.environ, PYTHONPATH=str(REPO))
     proc = subprocess.Popen([sys.executable, "-m", "worldgen", "run", str(ROOM), str(NODES / "spin_rate_loop.py"),
                              "--duration", "60"], env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     deadline = time.monotonic() + 30
@@ -176,7 +177,7 @@ def test_rospy_missing_names_the_package(tag, tmp_path):
     blocker = tmp_path / "block" / "rospy"
     blocker.mkdir(parents=True)
     (blocker / "__init__.py").write_text("raise ImportError(\"No module named 'rospy'\")\n")
-    env = dict(__import__("os").environ, PYTHONPATH=f"{blocker.parent}:{REPO}")
+    env = dict(os.environ, PYTHONPATH=f"{blocker.parent}:{REPO}")
     for command in (["run", str(ROOM), str(NODES / "spin_rate_loop.py"), "--duration", "1"],
                     ["sim", str(ROOM), "--duration", "1"]):
         proc = subprocess.run([sys.executable, "-m", "worldgen", *command], env=env, capture_output=True, text=True,

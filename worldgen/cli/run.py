@@ -8,9 +8,8 @@ from pathlib import Path
 import click
 
 from ..core.errors import EXIT_FAILED, EXIT_OK
+from ..ros.bridge.rubrics import TASKS
 from .drive import FiniteFloat
-
-TASKS = ("stop-at-wall", "spin", "drive-square", "wall-follow", "person-follow")
 
 
 @click.command("run", context_settings={"ignore_unknown_options": True})
@@ -22,7 +21,7 @@ TASKS = ("stop-at-wall", "spin", "drive-square", "wall-follow", "person-follow")
 @click.option("--duration", type=FiniteFloat(min=0.0, min_open=True, max=3600), default=None, metavar="S",
               help="Simulated seconds (default: 20, spin 30, the others 60).")
 @click.option("--rate", default="1", show_default=True, metavar="R|max",
-              help="Simulated time at R x real time, or max: as fast as it goes.")
+              help="Simulated time at R x real time, or max: as fast as the nodes keep up.")
 @click.option("--spawn", default=None, metavar="X,Y[,YAW]",
               help="Spawn pose in metres and radians. Default: the launch file's, else the spec's, else 0,0,0.")
 @click.option("--robot", default=None, metavar="burger|waffle|waffle_pi|FILE", help="Robot model or description.")

@@ -19,7 +19,7 @@ from .drive import FiniteFloat
 @click.option("--robot", default=None, metavar="burger|waffle|waffle_pi|FILE",
               help="Robot model, or a .urdf/.urdf.xacro file. Default: the launch file's or spec's, else burger.")
 @click.option("--rate", default="1", show_default=True, metavar="R|max",
-              help="Simulated time at R x real time, or max: as fast as it goes.")
+              help="Simulated time at R x real time, or max: as fast as the nodes keep up.")
 @click.option("--duration", type=FiniteFloat(min=0.0, min_open=True), default=None, metavar="S",
               help="Stop after S simulated seconds (default: run until Ctrl-C).")
 @click.option("--lidar-no-hit", type=click.Choice(["inf", "zero"]), default="inf", show_default=True,
