@@ -113,7 +113,10 @@ def _package_node(item: str, python: str, search: Sequence[str | Path], args: li
     if not found:
         raise InputError(f"package {package} has no executable named {node_type!r}", path=folder,
                          hint="check the name (rosrun PKG TYPE would fail too)")
-    return _python_file(found[0], python, args, name or Path(node_type).stem)
+    target = found[0]
+    if target.suffix != ".py" and os.access(target, os.X_OK) and not target.read_bytes()[:2] == b"#!":
+        return NodeSpec(name or target.stem, [str(target.resolve())], args, str(target))   # a compiled node
+    return _python_file(target, python, args, name or Path(node_type).stem)
 
 
 def _launch_nodes(path: Path, python: str, search: Sequence[str | Path], args: list[str]) -> list[NodeSpec]:
