@@ -24,7 +24,7 @@ LAYERS = {
     "sdf": 3,
     "sim": 4, "ros": 4,
     "check": 5,
-    "preview": 6,
+    "preview": 6, "ros.bridge": 6,   # the ROS side of the simulator: on sim and check, beside preview
     "cli": 7,
     "": -1,         # worldgen/__init__.py: the version, importing nothing
     "__main__": 8,  # python -m worldgen
@@ -75,6 +75,8 @@ def graph(top_level_only: bool = False) -> dict[str, set[str]]:
 
 def part(module: str) -> str:
     parts = module.split(".")
+    if parts[1:3] == ["ros", "bridge"]:
+        return "ros.bridge"
     return parts[1] if len(parts) > 1 else ""
 
 
@@ -182,3 +184,20 @@ def test_no_module_is_over_600_lines_nor_a_class_over_250():
             if isinstance(node, ast.ClassDef) and node.end_lineno - node.lineno + 1 > 250:
                 long.append(f"{path.name}: class {node.name} {node.end_lineno - node.lineno + 1} lines")
     assert long == []
+
+
+def test_the_simulation_never_imports_ros():
+    g = graph()
+    for module in (m for m in g if part(m) == "sim"):
+        reached = closure(g, module)
+        ros = sorted(m for m in reached if m.split(".")[0] in ("rospy", "rosgraph", "rosbag")
+                     or m.startswith("worldgen.ros"))
+        assert ros == [], module
+
+
+def test_the_bridge_and_the_preview_do_not_import_each_other():
+    g = graph()
+    for module, imported in g.items():
+        if part(module) in ("ros.bridge", "preview"):
+            other = {"ros.bridge": "preview", "preview": "ros.bridge"}[part(module)]
+            assert not [m for m in imported if m.startswith("worldgen") and part(m) == other], module

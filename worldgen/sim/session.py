@@ -30,7 +30,7 @@ from ..robots.profile import LidarParams, RobotProfile, robot_profile
 from ..core.scene import Scene
 from .drive import DiffDrive
 from .lidar import Scan, cast_scan
-from .scene_loader import ROBOT_GROUP, ROBOT_MASK, SceneBodies, load_scene
+from .scene_loader import ROBOT_GROUP, ROBOT_MASK, SCENE_GROUP, SCENE_MASK, SceneBodies, load_scene
 
 GRAVITY = -9.8                  # Gazebo's default
 DEFAULT_TIME_STEP = 1.0 / 240   # s; a whole number of steps per 30 Hz drive update and per 5 Hz scan
@@ -164,7 +164,40 @@ class Session:
         lidar = self.profile.lidar
         self.lidar: LidarParams | None = lidar if lidar is not None and lidar.link in self.link_index else None
         self.base_index = self.link_index.get(self.profile.base_frame, -1)
+        self.spawn = (x, y, yaw)
+        self._initial_base = pb.getBasePositionAndOrientation(robot, physicsClientId=self.client)
         return robot
+
+    def add_mover(self, radius: float, height: float, label: str, position=(0.0, 0.0)) -> int:
+        """A static upright cylinder (a person, say) that :meth:`move_body` moves: the LiDAR sees it, contacts
+        name it ``label``. Returns its body id."""
+        from ..core.scene import Shape
+
+        sid = pb.createCollisionShape(pb.GEOM_CYLINDER, radius=radius, height=height, physicsClientId=self.client)
+        body = pb.createMultiBody(baseMass=0, baseCollisionShapeIndex=sid,
+                                  basePosition=[position[0], position[1], height / 2], physicsClientId=self.client)
+        pb.setCollisionFilterGroupMask(body, -1, SCENE_GROUP, SCENE_MASK, physicsClientId=self.client)
+        self.bodies.shapes[body] = [Shape("cylinder", (position[0], position[1], height / 2), radius=radius,
+                                          length=height, model=label)]
+        return body
+
+    def move_body(self, body: int, x: float, y: float) -> None:
+        """Put a body made by :meth:`add_mover` at (x, y) on the floor."""
+        z = pb.getBasePositionAndOrientation(body, physicsClientId=self.client)[0][2]
+        pb.resetBasePositionAndOrientation(body, [x, y, z], [0, 0, 0, 1], physicsClientId=self.client)
+        shape = self.bodies.shapes[body][0]
+        shape.position = (x, y, z)
+
+    def reset_robot(self) -> None:
+        """Put the robot back at its spawn pose, at rest, wheels at angle 0 and the command at zero (what
+        Gazebo's reset_world does to a model); simulated time keeps running."""
+        position, orientation = self._initial_base
+        pb.resetBasePositionAndOrientation(self.robot, position, orientation, physicsClientId=self.client)
+        pb.resetBaseVelocity(self.robot, [0, 0, 0], [0, 0, 0], physicsClientId=self.client)
+        for j in range(pb.getNumJoints(self.robot, physicsClientId=self.client)):
+            pb.resetJointState(self.robot, j, 0.0, 0.0, physicsClientId=self.client)
+        self.drive.command = (0.0, 0.0)
+        self.drive.ramped = [0.0, 0.0]
 
     # -- time ------------------------------------------------------------------------------------------------
 
@@ -215,15 +248,34 @@ class Session:
         states = pb.getJointStates(self.robot, self.wheels, physicsClientId=self.client)
         return states[0][1] * self.drive.params.wheel_radius, states[1][1] * self.drive.params.wheel_radius
 
-    def odometry(self) -> Odometry:
-        (x, y, z), quat = self.link_pose(self.base_index)
-        roll, pitch, yaw = pb.getEulerFromQuaternion(quat)
+    def wheel_states(self) -> tuple[tuple[float, float], tuple[float, float]]:
+        """The drive wheels' joint angles (rad) and speeds (rad/s): ((left, right), (left, right))."""
+        states = pb.getJointStates(self.robot, self.wheels, physicsClientId=self.client)
+        return (states[0][0], states[1][0]), (states[0][1], states[1][1])
+
+    def base_velocity(self) -> tuple[tuple[float, float, float], tuple[float, float, float]]:
+        """World-frame linear (m/s) and angular (rad/s) velocity of the base frame."""
         if self.base_index == -1:
             lin, ang = pb.getBaseVelocity(self.robot, physicsClientId=self.client)
         else:
             state = pb.getLinkState(self.robot, self.base_index, computeLinkVelocity=True,
                                     physicsClientId=self.client)
             lin, ang = state[6], state[7]
+        return tuple(lin), tuple(ang)
+
+    def clearance(self, within: float = 1.0) -> float:
+        """The smallest distance between the robot and any scene body but the ground (``within`` when nothing
+        is closer than that)."""
+        nearest = within
+        for body in self.bodies.obstacle_bodies:
+            for pt in pb.getClosestPoints(self.robot, body, within, physicsClientId=self.client):
+                nearest = min(nearest, pt[8])
+        return nearest
+
+    def odometry(self) -> Odometry:
+        (x, y, z), quat = self.link_pose(self.base_index)
+        roll, pitch, yaw = pb.getEulerFromQuaternion(quat)
+        lin, ang = self.base_velocity()
         v = lin[0] * math.cos(yaw) + lin[1] * math.sin(yaw)
         return Odometry(self.t, x, y, z, roll, pitch, yaw, v, ang[2])
 

@@ -1,0 +1,51 @@
+"""A teaching assistant grades a folder of submissions: each package's node runs in its own master (two at once
+here), one result per submission, JUnit and JSON as `validate` writes them, and nothing left running."""
+
+from __future__ import annotations
+
+import json
+import shutil
+import uuid
+
+import pytest
+
+from conftest import CliRunner
+
+from bridgetools import NODES, need_ros, no_leftovers
+from worldgen.cli import main
+from worldgen.ros.course import write_course
+
+
+def test_a_folder_of_submissions_is_graded(tmp_path, monkeypatch):
+    need_ros()
+    tag = f"WORLDGEN_TEST_TAG={uuid.uuid4().hex}"
+    monkeypatch.setenv(*tag.split("="))
+    monkeypatch.setenv("ROS_HOME", str(tmp_path / "ros_home"))
+    course = write_course(tmp_path / "course")
+    subs = tmp_path / "submissions"
+    runner = CliRunner()
+    for name in ("alice", "bob", "carol", "dave"):
+        result = runner.invoke(main, ["scaffold", f"{name}_lab", "rospy", "geometry_msgs", "sensor_msgs", "-p",
+                                      str(subs)])
+        assert result.exit_code == 0, result.output
+    shutil.copy(course / "lab_a_stop_at_wall" / "scripts" / "stop_at_wall.py", subs / "alice_lab" / "scripts")
+    shutil.copy(NODES / "drive_into_wall.py", subs / "bob_lab" / "scripts" / "stop_at_wall.py")
+    shutil.copy(NODES / "crash_on_import.py", subs / "carol_lab" / "scripts" / "stop_at_wall.py")
+    grades = tmp_path / "grades.xml"
+    monkeypatch.chdir(tmp_path)
+    result = runner.invoke(main, ["run", "submissions/", "--task", "stop-at-wall", "-j", "2", "--junit", str(grades),
+                                  "--rate", "max", "--format", "json"])
+    assert result.exit_code == 1, result.output
+    assert "Traceback" not in result.output
+    doc = json.loads(result.stdout)
+    by_name = {r["path"].rstrip("/").rsplit("/", 1)[-1]: r for r in doc["results"]}
+    assert sorted(by_name) == ["alice_lab", "bob_lab", "carol_lab", "dave_lab"]
+    assert by_name["alice_lab"]["ok"] and by_name["alice_lab"]["metrics"]["node"] == "scripts/stop_at_wall.py"
+    assert by_name["alice_lab"]["metrics"]["final_front_distance_m"] == pytest.approx(0.5, abs=0.1)
+    messages = {name: " | ".join(f["message"] for f in r["findings"]) for name, r in by_name.items()}
+    assert "touched enclosed_room/Wall_1" in messages["bob_lab"]
+    assert "cannot import name 'Twistt'" in messages["carol_lab"]
+    assert "cannot tell which node to run" in messages["dave_lab"]
+    junit = grades.read_text()
+    assert junit.count("<testcase") == 8 and 'failures="4"' in junit and 'name="worldgen run"' in junit
+    no_leftovers(tag)

@@ -1,0 +1,202 @@
+"""`worldgen run WORLD NODE…`: students' nodes, written the ways students write them, run unmodified on the
+simulated robot with a private master; the report says what the robot did; crashes and bad input are findings or
+one-line errors, and no process outlives a run.
+
+Real rosmaster and rospy (Debian's); missing ROS packages skip, or fail under CI (see rosstubs).
+"""
+
+from __future__ import annotations
+
+import json
+import signal
+import subprocess
+import sys
+import time
+import os
+import uuid
+
+import pytest
+from conftest import CliRunner
+
+from rosstubs import SYSTEM_PYTHON
+from bridgetools import NODES, REPO, ROOM, leftovers, need_ros, no_leftovers
+from worldgen.cli import main
+from worldgen.ros.course import write_course
+
+
+@pytest.fixture
+def tag(monkeypatch, tmp_path) -> str:
+    """A marker in the environment every process of the run inherits, to find any left behind."""
+    need_ros()
+    value = uuid.uuid4().hex
+    monkeypatch.setenv("WORLDGEN_TEST_TAG", value)
+    monkeypatch.setenv("ROS_HOME", str(tmp_path / "ros_home"))
+    monkeypatch.delenv("ROS_MASTER_URI", raising=False)
+    yield f"WORLDGEN_TEST_TAG={value}"
+    no_leftovers(f"WORLDGEN_TEST_TAG={value}")
+
+
+@pytest.fixture(scope="module")
+def course(tmp_path_factory):
+    return write_course(tmp_path_factory.mktemp("course"))
+
+
+def node_running(marker: str) -> bool:
+    return any(p.split(" ", 1)[1].startswith(f"{SYSTEM_PYTHON} ") and "spin_rate_loop" in p
+               for p in leftovers(marker))
+
+
+def run(args: list[str]):
+    result = CliRunner().invoke(main, ["run", *args])
+    assert "Traceback" not in result.output, result.output
+    return result
+
+
+def test_the_courses_stop_at_wall_passes(tag, course, tmp_path):
+    node = course / "lab_a_stop_at_wall" / "scripts" / "stop_at_wall.py"
+    result = run([str(ROOM), str(node), "--task", "stop-at-wall", "--rate", "max", "--format", "json"])
+    assert result.exit_code == 0, result.output
+    doc = json.loads(result.stdout)
+    assert doc["ok"] is True and doc["task"] == "stop-at-wall" and doc["findings"] == []
+    m = doc["metrics"]
+    for key in ("cmd_vel_messages", "path_length_m", "rotation_rad", "final_pose", "final_front_distance_m",
+                "min_clearance_m", "contacts", "sim_time_s", "real_time_factor"):
+        assert key in m, key
+    assert m["final_front_distance_m"] == pytest.approx(0.5, abs=0.1)
+    assert m["cmd_vel_messages"] > 50 and m["contacts"] == [] and m["sim_time_s"] == pytest.approx(20.0)
+    assert m["path_length_m"] == pytest.approx(2.425 + 0.032 - m["final_front_distance_m"], abs=0.05)
+    assert m["real_time_factor"] > 5
+
+
+def test_callback_node_reading_zero_for_no_return(tag):
+    """A scan callback that publishes, ignoring 0 (the real LDS-01's no-return), with --lidar-no-hit zero."""
+    result = run([str(ROOM), str(NODES / "stop_zero_callback.py"), "--task", "stop-at-wall", "--rate", "max",
+                  "--lidar-no-hit", "zero", "--duration", "25"])
+    assert result.exit_code == 0, result.output
+    assert "stop-at-wall: PASS" in result.output
+
+
+def test_a_time_time_loop_runs_at_real_time(tag):
+    """Paced by the wall clock: 3 s at 0.1 m/s covers about 0.3 m only when simulated time runs at real time."""
+    result = run([str(ROOM), str(NODES / "forward_time_loop.py"), "--duration", "4.5", "--format", "json"])
+    assert result.exit_code == 0, result.output
+    m = json.loads(result.stdout)["metrics"]
+    assert m["path_length_m"] == pytest.approx(0.3, rel=0.15)
+    assert m["real_time_factor"] == pytest.approx(1.0, abs=0.1)
+
+
+def test_a_node_failing_on_import_is_a_finding(tag):
+    result = run([str(REPO / "examples" / "enclosed_room.yaml"), str(NODES / "crash_on_import.py"), "--rate", "max",
+                  "--duration", "2", "--format", "json"])
+    assert result.exit_code == 1, result.output
+    messages = [f["message"] for f in json.loads(result.stdout)["findings"]]
+    assert any("crash_on_import failed" in m and "cannot import name 'Twistt'" in m for m in messages), messages
+    assert any("no message on /cmd_vel" in m for m in messages)
+
+
+@pytest.mark.parametrize("make, expected", [
+    (lambda d: d / "missing.py", "no such node file"),
+    (lambda d: (d / "notes.txt").write_text("hello") and d / "notes.txt", "is not a Python node"),
+    (lambda d: (d / "bin.py").write_bytes(b"\x7fELF\x00\x01") and d / "bin.py", "is not a Python node"),
+])
+def test_bad_node_files_are_one_line_errors(tag, tmp_path, make, expected):
+    result = run([str(ROOM), str(make(tmp_path)), "--rate", "max", "--duration", "1"])
+    assert result.exit_code == 2
+    assert result.output.startswith("worldgen: error:") and expected in result.output
+    assert len(result.output.strip().splitlines()) == 1
+
+
+def test_a_world_that_does_not_load_is_a_one_line_error(tag, tmp_path):
+    bad = tmp_path / "bad.world"
+    bad.write_text("<sdf version='1.6'><world name='w'>")
+    result = run([str(bad), str(NODES / "spin_rate_loop.py"), "--rate", "max", "--duration", "1"])
+    assert result.exit_code == 2 and len(result.output.strip().splitlines()) == 1, result.output
+
+
+def test_ctrl_c_stops_every_process(tag, tmp_path):
+    marker = tag
+    env = dict(os.environ, PYTHONPATH=str(REPO))
+    proc = subprocess.Popen([sys.executable, "-m", "worldgen", "run", str(ROOM), str(NODES / "spin_rate_loop.py"),
+                             "--duration", "60"], env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 30
+    while not node_running(marker) and time.monotonic() < deadline:
+        time.sleep(0.1)
+    assert len(leftovers(marker)) >= 4   # worldgen, rosmaster, simulator, the node
+    proc.send_signal(signal.SIGINT)
+    out, err = proc.communicate(timeout=60)
+    assert "Traceback" not in err and proc.returncode != 0
+
+
+def test_a_killed_run_leaves_no_orphans(tag):
+    env = dict(os.environ, PYTHONPATH=str(REPO))
+    proc = subprocess.Popen([sys.executable, "-m", "worldgen", "run", str(ROOM), str(NODES / "spin_rate_loop.py"),
+                             "--duration", "60"], env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    deadline = time.monotonic() + 30
+    while not node_running(tag) and time.monotonic() < deadline:
+        time.sleep(0.1)
+    proc.kill()
+    proc.wait()
+
+
+BAG_READER = r"""
+import json, sys
+import rosbag
+with rosbag.Bag(sys.argv[1]) as bag:
+    info = bag.get_type_and_topic_info().topics
+    print(json.dumps({t: [i.msg_type, i.message_count] for t, i in info.items()}))
+"""
+
+
+def test_plot_csv_bag_and_junit(tag, tmp_path):
+    files = {k: tmp_path / f"run.{k}" for k in ("png", "csv", "bag", "xml")}
+    result = run([str(ROOM), str(NODES / "spin_rate_loop.py"), "--task", "spin", "--rate", "max", "--duration", "4",
+                  "--plot", str(files["png"]), "--csv", str(files["csv"]), "--bag", str(files["bag"]),
+                  "--junit", str(files["xml"])])
+    assert result.exit_code == 1, result.output          # 4 s is not two turns
+    assert "spin: FAIL" in result.output and "full turns; 2 are needed" in result.output
+    assert files["png"].read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and files["png"].stat().st_size > 10_000
+    rows = files["csv"].read_text().splitlines()
+    assert rows[0] == "t,x,y,yaw,v,omega,cmd_v,cmd_omega,front_m,nearest_m,clearance_m"
+    assert len(rows) - 1 == pytest.approx(4 * 30, abs=2)
+    assert float(rows[-1].split(",")[7]) == pytest.approx(1.0)   # the spin command in force at the end
+    proc = subprocess.run([SYSTEM_PYTHON, "-c", BAG_READER, str(files["bag"])], capture_output=True, text=True,
+                          timeout=60)
+    assert proc.returncode == 0, proc.stderr
+    topics = json.loads(proc.stdout)
+    assert topics["/scan"] == ["sensor_msgs/LaserScan", pytest.approx(20, abs=1)]
+    assert topics["/odom"][0] == "nav_msgs/Odometry" and topics["/odom"][1] == pytest.approx(120, abs=2)
+    assert topics["/cmd_vel"][0] == "geometry_msgs/Twist" and topics["/cmd_vel"][1] > 20
+    junit = files["xml"].read_text()
+    assert 'name="spin"' in junit and "<failure" in junit
+    again = run([str(ROOM), str(NODES / "spin_rate_loop.py"), "--duration", "1", "--plot", str(files["png"])])
+    assert again.exit_code == 2 and "--force" in again.output   # an existing output is kept
+
+
+def test_rospy_missing_names_the_package(tag, tmp_path):
+    """With rospy unimportable (a stand-in that fails as a missing module does), one line names the package."""
+    blocker = tmp_path / "block" / "rospy"
+    blocker.mkdir(parents=True)
+    (blocker / "__init__.py").write_text("raise ImportError(\"No module named 'rospy'\")\n")
+    env = dict(os.environ, PYTHONPATH=f"{blocker.parent}:{REPO}")
+    for command in (["run", str(ROOM), str(NODES / "spin_rate_loop.py"), "--duration", "1"],
+                    ["sim", str(ROOM), "--duration", "1"]):
+        proc = subprocess.run([sys.executable, "-m", "worldgen", *command], env=env, capture_output=True, text=True,
+                              timeout=60)
+        assert proc.returncode == 2, proc.stderr
+        assert proc.stderr.startswith("worldgen: error: rospy (ROS 1's Python client) is not installed: install "
+                                      "python3-rospy") and len(proc.stderr.strip().splitlines()) == 1, proc.stderr
+
+
+def test_a_package_node_with_arguments_and_a_launch_files_node(tag, course, monkeypatch):
+    """PKG/TYPE found on ROS_PACKAGE_PATH as rosrun finds it, with a private parameter after it; and the course's
+    own launch file as both the world (its world, robot and spawn) and the nodes (its node; Gazebo's are ours)."""
+    monkeypatch.setenv("ROS_PACKAGE_PATH", str(course))
+    monkeypatch.setenv("TURTLEBOT3_MODEL", "burger")
+    result = run([str(ROOM), "lab_a_stop_at_wall/stop_at_wall.py", "_target_distance:=0.7", "--task", "stop-at-wall",
+                  "--target", "0.7", "--rate", "max", "--format", "json"])
+    assert result.exit_code == 0, result.output
+    assert json.loads(result.stdout)["metrics"]["final_front_distance_m"] == pytest.approx(0.7, abs=0.06)
+    launch = course / "lab_a_stop_at_wall" / "launch" / "stop_at_wall.launch"
+    result = run([str(launch), str(launch), "--task", "stop-at-wall", "--rate", "max"])
+    assert result.exit_code == 0, result.output
+    assert "stop_at_wall on burger at (0, 0, 0) from launch file" in result.output

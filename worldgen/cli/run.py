@@ -1,0 +1,84 @@
+"""``worldgen run WORLD NODE…``: the class's own ROS nodes on the simulated TurtleBot3, measured and graded."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import click
+
+from ..core.errors import EXIT_FAILED, EXIT_OK
+from ..ros.bridge.rubrics import TASKS
+from .drive import FiniteFloat
+
+
+@click.command("run", context_settings={"ignore_unknown_options": True})
+@click.argument("world", type=click.Path(path_type=Path))
+@click.argument("nodes", nargs=-1)
+@click.option("--task", type=click.Choice(TASKS), default=None, help="Grade the run with this exercise's rubric.")
+@click.option("--target", type=FiniteFloat(min=0.0, min_open=True), default=None, metavar="M",
+              help="stop-at-wall: distance to stop at (0.5); wall-follow: distance to keep (0.4).")
+@click.option("--duration", type=FiniteFloat(min=0.0, min_open=True, max=3600), default=None, metavar="S",
+              help="Simulated seconds (default: 20, spin 30, the others 60).")
+@click.option("--rate", default="1", show_default=True, metavar="R|max",
+              help="Simulated time at R x real time, or max: as fast as the nodes keep up.")
+@click.option("--spawn", default=None, metavar="X,Y[,YAW]",
+              help="Spawn pose in metres and radians. Default: the launch file's, else the spec's, else 0,0,0.")
+@click.option("--robot", default=None, metavar="burger|waffle|waffle_pi|FILE", help="Robot model or description.")
+@click.option("--world", "folder_world", type=click.Path(path_type=Path), default=None, metavar="WORLD",
+              help="With a folder of submissions: the world to grade them in (default: the class's room).")
+@click.option("-j", "--jobs", type=click.IntRange(1, 16), default=1, show_default=True,
+              help="With a folder of submissions: runs at once, each with its own master.")
+@click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True)
+@click.option("--junit", type=click.Path(path_type=Path, dir_okay=False), default=None, metavar="FILE",
+              help="Also write a JUnit XML report.")
+@click.option("--plot", type=click.Path(path_type=Path, dir_okay=False), default=None, metavar="PNG",
+              help="Top-down picture of the path over the walls, with start, end and contacts.")
+@click.option("--csv", "csv_path", type=click.Path(path_type=Path, dir_okay=False), default=None, metavar="FILE",
+              help="The time series (pose, speeds, commands, front distance) as CSV.")
+@click.option("--bag", type=click.Path(path_type=Path, dir_okay=False), default=None, metavar="FILE",
+              help="A rosbag of /scan, /odom and /cmd_vel.")
+@click.option("--lidar-no-hit", type=click.Choice(["inf", "zero"]), default="inf", show_default=True,
+              help="What a beam that hits nothing reads: inf as in Gazebo, 0 as the real LDS-01 driver.")
+@click.option("--force", is_flag=True, help="Overwrite existing --plot/--csv/--bag/--junit files.")
+def run(world, nodes, task, target, duration, rate, spawn, robot, folder_world, jobs, fmt, junit, plot, csv_path,
+        bag, lidar_no_hit, force):
+    """Run NODE... (a .py file, PKG/TYPE, or a .launch file's nodes; `name:=value` after a node is its argument)
+    on the simulated TurtleBot3 in WORLD, with a private ROS master, and report what the robot did. With --task,
+    grade it: exit 0 pass, 1 fail.
+
+    WORLD may be a folder of submissions (catkin packages): each one's node for --task runs in its own master
+    and gets one result, as `validate` reports files.
+    """
+    from ..core.spawnpose import parse_spawn
+    from ..ros.bridge.simcmd import parse_rate
+
+    pace = parse_rate(rate)
+    spawn_pose = parse_spawn(spawn) if spawn is not None else None
+    if world.is_dir() and not (world / "model.sdf").is_file() and not (world / "model.config").is_file():
+        from ..ros.bridge.grade import grade_folder
+
+        results = grade_folder(world, folder_world, task=task, target=target, duration=duration, rate=pace,
+                               spawn=spawn_pose, robot=robot, no_hit=lidar_no_hit, jobs=jobs, nodes=nodes)
+        _write_reports(results, fmt, junit)
+        sys.exit(EXIT_OK if all(r.ok for r in results) else EXIT_FAILED)
+    from ..ros.bridge.single import run_single
+
+    result, text = run_single(world, nodes, task=task, target=target, duration=duration, rate=pace,
+                              spawn=spawn_pose, robot=robot, no_hit=lidar_no_hit, fmt=fmt, junit=junit, plot=plot,
+                              csv_path=csv_path, bag=bag, force=force)
+    click.echo(text, nl=False)
+    sys.exit(EXIT_OK if result.ok else EXIT_FAILED)
+
+
+def _write_reports(results, fmt: str, junit: Path | None) -> None:
+    from ..check.report import to_json, to_junit
+    from ..core.fsio import write_file
+    from ..ros.bridge.report import folder_text
+
+    if junit is not None:
+        write_file(junit, to_junit(results).replace(b'name="worldgen validate"', b'name="worldgen run"'), force=True)
+    click.echo(to_json(results) if fmt == "json" else folder_text(results), nl=False)
+
+
+COMMANDS = [run]

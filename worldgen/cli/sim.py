@@ -1,0 +1,46 @@
+"""``worldgen sim WORLD``: the simulated TurtleBot3 on a ROS master, with the topics Gazebo's plugins publish."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import click
+
+from .drive import FiniteFloat
+
+
+@click.command("sim")
+@click.argument("world", type=click.Path(path_type=Path))
+@click.option("--spawn", default=None, metavar="X,Y[,YAW]",
+              help="Spawn pose in metres and radians. Default: the launch file's, else the spec's, else 0,0,0.")
+@click.option("--launch", "launch_file", type=click.Path(path_type=Path), default=None, metavar="FILE",
+              help="Take the spawn pose and robot model from this launch file.")
+@click.option("--robot", default=None, metavar="burger|waffle|waffle_pi|FILE",
+              help="Robot model, or a .urdf/.urdf.xacro file. Default: the launch file's or spec's, else burger.")
+@click.option("--rate", default="1", show_default=True, metavar="R|max",
+              help="Simulated time at R x real time, or max: as fast as the nodes keep up.")
+@click.option("--duration", type=FiniteFloat(min=0.0, min_open=True), default=None, metavar="S",
+              help="Stop after S simulated seconds (default: run until Ctrl-C).")
+@click.option("--lidar-no-hit", type=click.Choice(["inf", "zero"]), default="inf", show_default=True,
+              help="What a beam that hits nothing reads: inf as in Gazebo, 0 as the real LDS-01 driver.")
+def sim(world, spawn, launch_file, robot, rate, duration, lidar_no_hit):
+    """Run the simulated TurtleBot3 in WORLD (a .world file, a floorplan spec or a launch file) as ROS nodes see
+    Gazebo: /scan, /odom, /tf, /tf_static, /joint_states, /imu and /clock out, /cmd_vel in, and the
+    /gazebo/reset_world and /gazebo/reset_simulation services.
+
+    Joins the master at ROS_MASTER_URI, or starts one there when none answers (and stops it on exit). Sets
+    /use_sim_time. Runs until Ctrl-C or --duration.
+    """
+    from ..core.spawnpose import parse_spawn
+    from ..ros.bridge.simcmd import parse_rate
+    from ..ros.bridge.simcmd import sim as run_sim
+    from ..ros.bridge.world import load_world
+
+    pace = parse_rate(rate)
+    loaded = load_world(world, spawn=parse_spawn(spawn) if spawn is not None else None, robot=robot,
+                        launch=launch_file)
+    sys.exit(run_sim(loaded, rate=pace, duration=duration, no_hit=lidar_no_hit))
+
+
+COMMANDS = [sim]

@@ -1,0 +1,110 @@
+"""A teaching assistant's folder: ``worldgen run submissions/ --task stop-at-wall -j 2 --junit grades.xml``.
+
+Each submission is a catkin package under the folder (or, when the folder holds no package, each of its
+subfolders). Its node for the task is the script named as the course names it (``stop_at_wall.py``,
+``spin_in_circles.py``, ``drive_square.py``, ``wall_follower.py``, ``person_follower.py``), or the file named on
+the command line, or its only Python file. Every submission runs in its own master on its own port, ``jobs`` at
+once, and gets one :class:`~worldgen.check.report.Result`; a submission that cannot run is an error finding,
+never the end of the grading.
+"""
+
+from __future__ import annotations
+
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+
+from ...check.report import Result
+from ...core.errors import InputError, WorldgenError
+from ...core.findings import Finding
+
+TASK_NODES = {"stop-at-wall": "stop_at_wall.py", "spin": "spin_in_circles.py", "drive-square": "drive_square.py",
+              "wall-follow": "wall_follower.py", "person-follow": "person_follower.py"}
+MASTER_TRIES = 3
+
+
+def submissions(folder: Path) -> list[Path]:
+    """The catkin packages under ``folder`` (crawled as rospack does), else its subfolders; sorted."""
+    from ...core.packages import crawl
+
+    found = [p for p in crawl(folder) if p != folder]
+    if not found:
+        found = [p for p in folder.iterdir() if p.is_dir() and not p.name.startswith(".")]
+    return sorted(found)
+
+
+def node_of(submission: Path, task: str | None, names: list[str]) -> Path:
+    """The submission's node for ``task`` (see the module docstring); InputError naming what was looked for."""
+    wanted = list(names) or ([TASK_NODES[task]] if task else [])
+    for name in wanted:
+        hits = sorted(p for p in submission.rglob(Path(name).name) if p.is_file())
+        if hits:
+            return hits[0]
+    scripts = sorted(p for p in submission.rglob("*.py") if p.is_file() and p.name != "setup.py")
+    if len(scripts) == 1:
+        return scripts[0]
+    looked = " or ".join(wanted) if wanted else "a .py file"
+    raise InputError(f"cannot tell which node to run: no {looked}, and {len(scripts)} Python files",
+                     path=submission, hint="name the node file after the task, or give its name after the folder")
+
+
+def grade_folder(folder: Path, world_path: Path | None, *, task, target, duration, rate, spawn, robot, no_hit, jobs,
+                 nodes=()) -> list[Result]:
+    from ...core.resources import examples_dir
+    from .report import result_of
+    from .rosenv import import_rospy, node_python
+    from .rubrics import person_loop
+    from .run import RunOptions, parse_duration
+    from .supervise import stop_everything
+    from .world import load_world
+
+    import_rospy()
+    python = node_python()
+    world = load_world(world_path or examples_dir() / "enclosed_room.yaml", spawn=spawn, robot=robot)
+    found = submissions(folder)
+    if not found:
+        raise InputError("holds no submissions (no catkin packages, no folders)", path=folder,
+                         hint="give the folder holding one folder or package per student")
+    options = RunOptions(duration=parse_duration(duration, task), rate=rate, no_hit=no_hit, task=task, target=target,
+                         person=person_loop(world.spawn) if task == "person-follow" else None)
+
+    def one(submission: Path) -> Result:
+        try:
+            node = node_of(submission, task, list(nodes))
+            outcome = _run(world, node, python, options)
+        except WorldgenError as err:
+            result = Result(path=str(submission), spawn=world.spawn, spawn_source=f"from {world.spawn_source}",
+                            robot=world.robot, robot_source=world.robot_source, checks=["node"])
+            result.findings.append(Finding("node", "error", str(err), where=str(submission)))
+            if task:
+                result.skipped[task] = "the node could not run"
+            return result
+        result = result_of(str(submission), world, outcome, task, target)
+        result.metrics["node"] = str(node.relative_to(submission))
+        return result
+
+    pool = ThreadPoolExecutor(max_workers=max(1, jobs))
+    futures = [pool.submit(one, s) for s in found]
+    try:
+        return [f.result() for f in futures]
+    except KeyboardInterrupt:   # Ctrl-C or SIGTERM in the main thread: stop every job's processes
+        for future in futures:
+            future.cancel()
+        stop_everything()
+        raise
+    finally:
+        pool.shutdown(wait=True)
+
+
+def _run(world, node: Path, python: str, options):
+    """One submission's run; a master that could not take its free port (another job's race) is tried again."""
+    from .nodes import resolve_nodes
+    from .run import run_nodes
+
+    specs = resolve_nodes([str(node)], python)
+    for attempt in range(MASTER_TRIES):
+        try:
+            return run_nodes(world, specs, options)
+        except InputError as err:
+            if "rosmaster could not start" not in str(err) or attempt == MASTER_TRIES - 1:
+                raise
+    raise AssertionError("unreachable")

@@ -1,0 +1,135 @@
+"""A ROS master: is one answering at a URI, and starting a private one (``rosmaster --core``) on a free port.
+
+The master is a child in a process group of its own (see :mod:`.supervise`), waited for until it answers, and
+stopped with everything it started.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import socket
+import time
+import xmlrpc.client
+from pathlib import Path
+
+from ...core.errors import InputError
+from .supervise import Child, Supervisor
+
+CALLER = "/worldgen"
+START_TIMEOUT = 20.0   # s for a master to answer
+
+
+def master_answers(uri: str, timeout: float = 1.0) -> bool:
+    """Whether a ROS master answers ``getSystemState`` at ``uri``."""
+    old = socket.getdefaulttimeout()
+    socket.setdefaulttimeout(timeout)
+    try:
+        code, _, _ = xmlrpc.client.ServerProxy(uri).getSystemState(CALLER)
+        return code == 1
+    except (OSError, xmlrpc.client.Error, ValueError):
+        return False
+    finally:
+        socket.setdefaulttimeout(old)
+
+
+def free_port() -> int:
+    with socket.socket() as sock:
+        sock.bind(("127.0.0.1", 0))
+        return sock.getsockname()[1]
+
+
+def port_in_use(port: int) -> bool:
+    with socket.socket() as sock:
+        sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+        try:
+            sock.bind(("", port))
+        except OSError:
+            return True
+    return False
+
+
+def rosmaster_command() -> str:
+    found = shutil.which("rosmaster")
+    if found is None:
+        from .rosenv import distro_package
+
+        package = "python3-rosmaster" if distro_package() == "python3-rospy" else "ros-noetic-rosmaster"
+        raise InputError(f"rosmaster (the ROS master) is not installed: install {package}",
+                         hint=f"apt install {package}")
+    return found
+
+
+def start_master(supervisor: Supervisor, port: int | None, env: dict[str, str], log: Path | None = None
+                 ) -> tuple[Child, str]:
+    """``rosmaster --core -p PORT`` (a free port when None) under ``supervisor``, waited for until it answers;
+    returns the child and its URI. InputError when the port is taken or the master does not come up."""
+    command = rosmaster_command()
+    if port is None:
+        port = free_port()
+    elif port_in_use(port):
+        raise InputError(f"port {port} is already in use, so no ROS master can start there",
+                         hint="stop what listens there, or set ROS_MASTER_URI to a free port")
+    uri = f"http://127.0.0.1:{port}"
+    child = supervisor.start("rosmaster", [command, "--core", "-p", str(port)], dict(env, ROS_MASTER_URI=uri),
+                             log=log, last=True)
+    deadline = time.monotonic() + START_TIMEOUT
+    while time.monotonic() < deadline:
+        if not child.running:
+            raise InputError(f"rosmaster could not start on port {port}: {child.last_error_line() or 'it exited'}",
+                             hint="is the port free? is python3-rosmaster installed?")
+        if master_answers(uri, 0.5):
+            if _master_pid(uri) != child.proc.pid:   # another master took the port first
+                supervisor.stop(child)
+                raise InputError(f"rosmaster could not start on port {port}: another master answers there",
+                                 hint="set ROS_MASTER_URI to a free port")
+            return child, uri
+        time.sleep(0.05)
+    supervisor.stop(child)
+    raise InputError(f"rosmaster did not answer on port {port} within {START_TIMEOUT:g} s")
+
+
+def _master_pid(uri: str) -> int | None:
+    try:
+        code, _, pid = xmlrpc.client.ServerProxy(uri).getPid(CALLER)
+    except (OSError, xmlrpc.client.Error):
+        return None
+    return pid if code == 1 else None
+
+
+def set_param(uri: str, name: str, value) -> None:
+    code, message, _ = xmlrpc.client.ServerProxy(uri).setParam(CALLER, name, value)
+    if code != 1:
+        raise InputError(f"the ROS master at {uri} refused to set {name}: {message}")
+
+
+def get_param(uri: str, name: str, default=None):
+    try:
+        code, _, value = xmlrpc.client.ServerProxy(uri).getParam(CALLER, name)
+    except (OSError, xmlrpc.client.Error):
+        return default
+    return value if code == 1 else default
+
+
+def node_names(uri: str) -> set[str]:
+    """Every node the master knows (publishing, subscribing or serving anything)."""
+    try:
+        code, _, state = xmlrpc.client.ServerProxy(uri).getSystemState(CALLER)
+    except (OSError, xmlrpc.client.Error):
+        return set()
+    names = set()
+    for group in state if code == 1 else ():
+        for _, nodes in group:
+            names.update(nodes)
+    return names
+
+
+def ros_env(base: dict[str, str] | None, uri: str, home: Path) -> dict[str, str]:
+    """The environment of a process on the master at ``uri``: ROS_HOME and the log folder under ``home`` (so
+    nothing goes to ~/.ros), unbuffered Python output."""
+    env = dict(os.environ if base is None else base)
+    home.mkdir(parents=True, exist_ok=True)
+    env.update(ROS_MASTER_URI=uri, ROS_HOME=str(home), ROS_LOG_DIR=str(home / "log"), PYTHONUNBUFFERED="1")
+    if "ROS_IP" not in env and "ROS_HOSTNAME" not in env:
+        env["ROS_IP"] = "127.0.0.1"
+    return env

@@ -1,0 +1,143 @@
+"""What ``worldgen run … NODE…`` starts: each NODE is a ``.py`` file (run with the Python that has rospy), a
+``PKG/TYPE`` executable of a catkin package (found as ``rosrun`` finds it), or a ``.launch`` file (its nodes, less
+the Gazebo and robot-description ones this simulator stands in for). An argument holding ``:=`` (``_kp:=0.8``,
+``scan:=/base_scan``) belongs to the node before it, as on a ``rosrun`` command line.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Sequence
+
+from ...core.errors import InputError
+
+# Packages whose nodes worldgen itself stands in for when a launch file starts them.
+STAND_INS = frozenset({"gazebo_ros", "robot_state_publisher", "joint_state_publisher", "xacro", "rviz",
+                       "turtlebot3_gazebo", "turtlebot3_description", "turtlebot3_bringup", "tf", "tf2_ros"})
+_PKG_TYPE = re.compile(r"^[A-Za-z][A-Za-z0-9_]*/[^/\s]+$")
+
+
+@dataclass
+class NodeSpec:
+    """One process to start: its display name, the command, and the ``name:=value`` arguments it gets."""
+
+    name: str
+    command: list[str]
+    args: list[str] = field(default_factory=list)
+    source: str = ""
+
+    @property
+    def argv(self) -> list[str]:
+        return self.command + self.args
+
+
+def _group(items: Sequence[str]) -> list[tuple[str, list[str]]]:
+    grouped: list[tuple[str, list[str]]] = []
+    for item in items:
+        if ":=" in item and grouped:
+            grouped[-1][1].append(item)
+        elif ":=" in item:
+            raise InputError(f"{item!r} comes before any node", hint="write NODE first, then its name:=value arguments")
+        else:
+            grouped.append((item, []))
+    return grouped
+
+
+def resolve_nodes(items: Sequence[str], python: str, search: Sequence[str | Path] = ()) -> list[NodeSpec]:
+    """Every NODE argument as the processes it starts (see the module docstring); InputError for a missing or
+    non-Python file, an unknown package or executable. ``search`` are extra package roots (tried before
+    ``ROS_PACKAGE_PATH``)."""
+    if not items:
+        raise InputError("no node given", hint="give the node to run: a .py file, PKG/TYPE or a .launch file")
+    specs: list[NodeSpec] = []
+    for item, args in _group(items):
+        path = Path(item)
+        if path.suffix in (".launch", ".xml") or item.endswith(".launch.xml"):
+            specs += _launch_nodes(path, python, search, args)
+        elif path.exists() or not _PKG_TYPE.match(item) or item.startswith("."):
+            specs.append(_python_file(path, python, args))
+        else:
+            specs.append(_package_node(item, python, search, args))
+    names = [s.name for s in specs]
+    for i, spec in enumerate(specs):   # two nodes of one file: tell their logs apart
+        if names.count(spec.name) > 1:
+            spec.name = f"{spec.name}_{i + 1}"
+    return specs
+
+
+def check_python_file(path: Path) -> None:
+    if not path.exists():
+        raise InputError("no such node file", path=path, hint="give the path of the node's .py file")
+    if path.is_dir():
+        raise InputError("is a folder, not a node", path=path, hint="give the node's .py file")
+    try:
+        data = path.read_bytes()
+    except OSError as err:
+        raise InputError(f"cannot read the node: {err.strerror}", path=path) from None
+    if path.suffix != ".py" and not data.startswith(b"#!") or b"\0" in data:
+        raise InputError("is not a Python node", path=path, hint="give a rospy node's .py file, PKG/TYPE or a .launch file")
+    try:
+        data.decode("utf-8")
+    except UnicodeDecodeError:
+        raise InputError("is not a Python node (not UTF-8 text)", path=path,
+                         hint="give a rospy node's .py file") from None
+
+
+def _python_file(path: Path, python: str, args: list[str], name: str | None = None) -> NodeSpec:
+    check_python_file(path)
+    head = path.read_bytes()[:200].split(b"\n", 1)[0]
+    if path.suffix != ".py" and b"python" not in head:
+        if not os.access(path, os.X_OK):
+            raise InputError("is not a Python node, nor executable", path=path, hint="give a rospy node's .py file")
+        return NodeSpec(name or path.stem, [str(path.resolve())], args, str(path))
+    return NodeSpec(name or path.stem, [python, str(path.resolve())], args, str(path))
+
+
+def _index(search: Sequence[str | Path]):
+    from ...core import packages
+
+    return packages.PackageIndex([Path(p) for p in search] + packages.ros_package_path())
+
+
+def _package_node(item: str, python: str, search: Sequence[str | Path], args: list[str],
+                  name: str | None = None) -> NodeSpec:
+    package, _, node_type = item.partition("/")
+    folder = _index(search).find(package)
+    if folder is None:
+        raise InputError(f"{item}: no such file, and no package named {package!r}",
+                         hint="put its workspace on ROS_PACKAGE_PATH (source devel/setup.bash), or give the .py file")
+    found = sorted(p for p in folder.rglob(node_type) if p.is_file())
+    if not found:
+        raise InputError(f"package {package} has no executable named {node_type!r}", path=folder,
+                         hint="check the name (rosrun PKG TYPE would fail too)")
+    target = found[0]
+    if target.suffix != ".py" and os.access(target, os.X_OK) and not target.read_bytes()[:2] == b"#!":
+        return NodeSpec(name or target.stem, [str(target.resolve())], args, str(target))   # a compiled node
+    return _python_file(target, python, args, name or Path(node_type).stem)
+
+
+def _launch_nodes(path: Path, python: str, search: Sequence[str | Path], args: list[str]) -> list[NodeSpec]:
+    from ..launch_reader import read_launch
+
+    if not path.is_file():
+        raise InputError("no such launch file", path=path, hint="check the path")
+    info = read_launch(path)
+    from ...core import packages
+
+    own = packages.owning_package(path)
+    roots = list(search) + ([own, packages.source_tree(own)] if own is not None else [])
+    specs = []
+    for node in info.nodes:
+        if node.package in STAND_INS:
+            continue
+        extra = (node.args or "").split() + args + [f"__name:={node.name}"]
+        if node.ns not in ("", "/"):
+            extra.append(f"__ns:={node.ns}")
+        specs.append(_package_node(f"{node.package}/{node.type}", python, roots, extra, node.name))
+    if not specs:
+        raise InputError("the launch file starts no node of its own (only Gazebo and robot-description ones)",
+                         path=path, hint="give the node's .py file, or a launch file that starts it")
+    return specs

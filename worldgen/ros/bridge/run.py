@@ -1,0 +1,161 @@
+"""One ``worldgen run``: a private master on a free port, the simulator node, the students' nodes, the
+duration, then everything stopped and what the robot did measured (and judged, with a task).
+
+Order: the master; ``/use_sim_time`` set; the simulator node, paused at time 0; the nodes; once every node is up
+(registered with the master, or already exited) the simulator is unpaused, as Gazebo started paused and then
+unpaused would be; the run ends after ``duration`` simulated seconds. Every process is in a group of its own,
+stopped on any exit (see :mod:`.supervise`); nodes' output goes to files, whose last line a finding quotes when a
+node crashes.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import sys
+import tempfile
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ...core.errors import WorldgenError
+from ...core.findings import Finding
+from .master import node_names, ros_env, set_param, start_master
+from .nodes import NodeSpec
+from .supervise import Child, Supervisor
+from .world import World, write_config
+
+START_PARAM = "/worldgen/start"
+UP_TIMEOUT = 15.0      # s of real time for the nodes to register
+SETTLE = 0.3           # s after that for their topics to connect
+SIM_START_TIMEOUT = 30.0
+
+
+@dataclass
+class RunOptions:
+    duration: float = 20.0
+    rate: float = 1.0                # 0: as fast as it goes
+    no_hit: str = "inf"
+    task: str | None = None
+    target: float | None = None
+    bag: Path | None = None
+    person: dict | None = None
+
+
+@dataclass
+class Outcome:
+    """One run: the metrics, the findings about the nodes, the trace, and each node's output."""
+
+    metrics: dict
+    findings: list[Finding] = field(default_factory=list)
+    trace: dict = field(default_factory=dict)
+    logs: dict[str, str] = field(default_factory=dict)
+
+
+def _bridge_env(env: dict[str, str]) -> dict[str, str]:
+    root = str(Path(__file__).resolve().parents[3])
+    parts = [root] + [p for p in env.get("PYTHONPATH", "").split(os.pathsep) if p and p != root]
+    return dict(env, PYTHONPATH=os.pathsep.join(parts))
+
+
+def run_nodes(world: World, nodes: list[NodeSpec], options: RunOptions, base_env: dict[str, str] | None = None
+              ) -> Outcome:
+    """Run ``nodes`` on the simulated robot in ``world`` (see the module docstring). Raises WorldgenError when the
+    simulation itself cannot run (rospy missing, the world or robot cannot be loaded); a node's failure is a
+    finding."""
+    from .rosenv import import_rospy
+
+    import_rospy()
+    with tempfile.TemporaryDirectory(prefix="worldgen_run_") as tmp_name, Supervisor() as supervisor:
+        tmp = Path(tmp_name)
+        _, uri = start_master(supervisor, None, dict(base_env or os.environ), log=tmp / "master.log")
+        env = ros_env(base_env, uri, tmp / "ros_home")
+        set_param(uri, "/use_sim_time", True)
+        trace_file = tmp / "trace.json"
+        config = write_config(tmp, world, rate=options.rate, duration=options.duration, no_hit=options.no_hit,
+                              trace=str(trace_file), bag=str(options.bag) if options.bag else None,
+                              start_param=START_PARAM, person=options.person, set_sim_time=False)
+        simulator = supervisor.start("simulator", [sys.executable, "-m", "worldgen.ros.bridge.node", str(config)],
+                                     _bridge_env(env), log=tmp / "simulator.log")
+        _wait_for_simulator(simulator, uri)
+        children = [supervisor.start(n.name, n.argv, env, log=tmp / f"node_{i}.log") for i, n in enumerate(nodes)]
+        _wait_for_nodes(children, uri)
+        set_param(uri, "/worldgen/pids", [c.proc.pid for c in children])
+        set_param(uri, START_PARAM, True)
+        _wait_for_end(simulator, options)
+        alive = {c.name: c.running for c in children}
+        supervisor.stop_all()
+        if not trace_file.is_file():
+            raise WorldgenError(f"the simulation ended without a result: {simulator.last_error_line() or 'no output'}",
+                                hint="please report this to the worldgen developers")
+        trace = json.loads(trace_file.read_text(encoding="utf-8"))
+        from .metrics import compute
+
+        outcome = Outcome(compute(trace), trace=trace, logs={c.name: c.output() for c in children})
+        outcome.findings += node_findings(nodes, children, alive, outcome.metrics)
+        return outcome
+
+
+def _wait_for_simulator(simulator: Child, uri: str) -> None:
+    deadline = time.monotonic() + SIM_START_TIMEOUT
+    while "/gazebo" not in node_names(uri):
+        if not simulator.running:
+            line = simulator.last_error_line()
+            if line.startswith("worldgen: error: "):
+                raise WorldgenError(line[len("worldgen: error: "):])
+            raise WorldgenError(f"the simulator did not start: {line or 'no output'}",
+                                hint="please report this to the worldgen developers")
+        if time.monotonic() > deadline:
+            raise WorldgenError(f"the simulator did not come up within {SIM_START_TIMEOUT:g} s")
+        time.sleep(0.05)
+
+
+def _wait_for_nodes(children: list[Child], uri: str) -> None:
+    """Until as many nodes as processes have registered (besides the simulator and rosout), or every process
+    that has not has exited, or :data:`UP_TIMEOUT`; then :data:`SETTLE` for their topics to connect."""
+    deadline = time.monotonic() + UP_TIMEOUT
+    while time.monotonic() < deadline:
+        others = node_names(uri) - {"/gazebo", "/rosout"}
+        if len(others) >= sum(c.running for c in children):
+            break
+        time.sleep(0.05)
+    time.sleep(SETTLE)
+
+
+def _wait_for_end(simulator: Child, options: RunOptions) -> None:
+    limit = options.duration / options.rate * 1.5 + 30 if options.rate > 0 else options.duration * 2 + 60
+    deadline = time.monotonic() + limit
+    while simulator.running and time.monotonic() < deadline:
+        time.sleep(0.05)
+
+
+def node_findings(nodes: list[NodeSpec], children: list[Child], alive: dict[str, bool], metrics: dict
+                  ) -> list[Finding]:
+    """A node that exited with an error (the last line of its output says why), and no /cmd_vel at all."""
+    findings = []
+    for spec, child in zip(nodes, children):
+        rc = child.proc.returncode
+        if not alive[child.name] and rc not in (0, None):
+            last = child.last_error_line() or "no output"
+            how = f"exit code {rc}" if rc > 0 else f"killed by signal {-rc}"
+            findings.append(Finding("node", "error", f"node {spec.name} failed ({how}): {last}", where=spec.source,
+                                    fix="run it by hand against `worldgen sim` to see its whole output"))
+    if not metrics.get("cmd_vel_messages"):
+        names = ", ".join(n.name for n in nodes)
+        findings.append(Finding("node", "error", f"no message on /cmd_vel from {names}: the robot was never "
+                                                 "commanded", fix="publish geometry_msgs/Twist on cmd_vel"))
+    return findings
+
+
+def parse_duration(value: float | None, task: str | None) -> float:
+    from .rubrics import DEFAULT_DURATION
+
+    if value is not None:
+        return float(value)
+    return DEFAULT_DURATION.get(task or "", 20.0)
+
+
+def check_outputs(paths, force: bool) -> None:
+    from ...core.fsio import check_free
+
+    check_free([p for p in paths if p is not None], force)

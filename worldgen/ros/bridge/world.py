@@ -1,0 +1,89 @@
+"""What the simulator node simulates: a world file, a floorplan spec (built as ``worldgen build`` would) or a
+launch file (the world it starts, its robot and spawn pose) → a scene, a robot model and a spawn pose, each with
+where it came from; and the node's config file for one run."""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+from pathlib import Path
+
+from ...core.errors import InputError, WorldFileError
+from ...core.scene import Scene
+
+
+@dataclass
+class World:
+    path: Path
+    scene: Scene
+    robot: str
+    robot_source: str
+    spawn: tuple[float, float, float]
+    spawn_source: str
+
+
+def load_world(path: str | Path, *, spawn=None, robot: str | None = None, launch: str | Path | None = None,
+               model_paths=()) -> World:
+    """Read the input (see the module docstring). ``spawn``/``robot`` override what the files say; ``launch``
+    takes the spawn pose and robot from that launch file. InputError or WorldFileError when it cannot be read."""
+    from ...check.sources import load_scene
+    from ...check.validate import input_kind
+
+    path = Path(path)
+    if not path.exists():
+        raise InputError("no such file", path=path, hint="give a .world/.sdf file, a floorplan spec or a launch file")
+    kind = input_kind(path)
+    found_robot, found_spawn, robot_src, spawn_src = None, None, "default", "the world's origin"
+    world_file = path
+    if kind == "launch":
+        world_file, found_robot, found_spawn = _from_launch(path)
+        robot_src = spawn_src = f"launch file {path}"
+    elif kind == "package":
+        raise InputError("is a catkin package folder, not a world", path=path,
+                         hint="give the package's .world or .launch file")
+    scene, spec_robot = load_scene(world_file, "spec" if kind == "spec" else "world", model_paths)
+    if spec_robot is not None:
+        found_robot, found_spawn = spec_robot["model"], tuple(spec_robot["spawn"])
+        robot_src = spawn_src = f"spec {path}"
+    if launch is not None:
+        _, launch_robot, launch_spawn = _from_launch(Path(launch), need_world=False)
+        if launch_robot:
+            found_robot, robot_src = launch_robot, f"launch file {launch}"
+        if launch_spawn:
+            found_spawn, spawn_src = launch_spawn, f"launch file {launch}"
+    if robot is not None:
+        found_robot, robot_src = robot, "--robot"
+    if spawn is not None:
+        found_spawn, spawn_src = tuple(spawn), "--spawn"
+    if found_robot is not None:
+        from ...robots import MODELS, robot_file
+
+        file = robot_file(found_robot)   # InputError for an unknown model or missing file
+        found_robot = found_robot if found_robot in MODELS else str(file)
+    return World(path, scene, found_robot or "burger", robot_src, tuple(found_spawn or (0.0, 0.0, 0.0)), spawn_src)
+
+
+def _from_launch(path: Path, need_world: bool = True):
+    from ..launch_reader import read_launch
+
+    info = read_launch(path)
+    spawn = None
+    if info.spawn is not None:
+        values = list(info.spawn) + [0.0] * (4 - len(info.spawn))
+        spawn = (float(values[0]), float(values[1]), float(values[3]))
+    world = info.world_path
+    if need_world and (world is None or not Path(world).is_file()):
+        raise WorldFileError(f"the world this launch file starts cannot be found: {info.world_ref or '(none)'}",
+                             path=path, hint="is its package on ROS_PACKAGE_PATH? or give the world file itself "
+                                             "and --launch THIS_FILE")
+    return world, info.model if info.model in ("burger", "waffle", "waffle_pi") else None, spawn
+
+
+def write_config(folder: Path, world: World, **options) -> Path:
+    """The simulator node's config (and the pickled scene) in ``folder``; see :func:`.node.main`."""
+    scene_file = folder / "scene.pickle"
+    world.scene.save(scene_file)
+    config = {"scene_file": str(scene_file), "robot": world.robot, "spawn": list(world.spawn), **options}
+    path = folder / "sim.json"
+    path.write_text(json.dumps(config), encoding="utf-8")
+    return path
