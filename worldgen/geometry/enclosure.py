@@ -116,6 +116,41 @@ def _convex_section(points, z: float):
     return hull if hull.geom_type == "Polygon" and hull.area > 0 else None
 
 
+def _box_section(shape: Shape, z: float):
+    """A box's section: when one of its axes stands upright (most walls), its rectangle between bottom and top;
+    else the general convex section."""
+    upright = _upright_box(shape)
+    if upright is not None and upright[0] < z < upright[1]:
+        return upright[2]
+    if upright is not None and not upright[0] <= z <= upright[1]:
+        return None
+    return _convex_section(_to_world(shape, box_corners(shape.size)), z)
+
+
+def _upright_box(shape: Shape):
+    """(bottom, top, rectangle seen from above) of a box one of whose axes stands upright, else None."""
+    import shapely
+
+    from ..core.poses import quat_matrix
+
+    rotation = quat_matrix(*shape.orientation)
+    for k in range(3):
+        if abs(rotation[2, k]) > 1 - 1e-12:
+            break
+    else:
+        return None
+    i, j = (a for a in range(3) if a != k)
+    hi, hj, hk = shape.size[i] / 2, shape.size[j] / 2, shape.size[k] / 2
+    ux, uy, vx, vy = rotation[0, i] * hi, rotation[1, i] * hi, rotation[0, j] * hj, rotation[1, j] * hj
+    if ux * vy - uy * vx == 0:
+        return None
+    x, y, z = shape.position
+    ring = [(x + ux + vx, y + uy + vy), (x - ux + vx, y - uy + vy), (x - ux - vx, y - uy - vy),
+            (x + ux - vx, y + uy - vy)]
+    polygon = shapely.Polygon(ring if ux * vy - uy * vx > 0 else ring[::-1])
+    return z - hk, z + hk, polygon
+
+
 def _cylinder_section(shape: Shape, z: float):
     import numpy as np
     import shapely
@@ -235,7 +270,7 @@ def _probe(polygon) -> tuple[float, float]:
 def section(shape: Shape, z: float):
     """The 2-D footprint (shapely geometry, world x/y) of ``shape`` cut by the plane at height ``z``, or None."""
     if shape.kind == "box" and shape.size is not None:
-        return _convex_section(_to_world(shape, box_corners(shape.size)), z)
+        return _box_section(shape, z)
     if shape.kind == "cylinder" and shape.radius and shape.length:
         return _cylinder_section(shape, z)
     if shape.kind == "sphere" and shape.radius:
@@ -265,9 +300,14 @@ def footprints_between(scene: Scene, z0: float, z1: float, steps: int = 4, also:
     heights = sorted({z0 + (z1 - z0) * i / (steps - 1) for i in range(steps)} | set(also))
     out = []
     for shape in scene.obstacles():
+        upright = _upright_box(shape) if shape.kind == "box" and shape.size is not None else None
+        if upright is not None and any(upright[0] < z < upright[1] for z in heights):
+            out.append(Footprint(shape.label, upright[2]))   # its sections at the other heights: the same, or none
+            continue
         parts = [g for g in (section(shape, z) for z in heights) if g is not None and not g.is_empty]
-        if parts:
-            out.append(Footprint(shape.label, shapely.union_all(parts)))
+        if parts:   # an upright shape's sections are all alike: no union needed
+            same = all(p.equals_exact(parts[0], 0.0) for p in parts[1:])
+            out.append(Footprint(shape.label, parts[0] if same else shapely.union_all(parts)))
     return out
 
 
@@ -313,7 +353,9 @@ def obstacle_union(prints: list[Footprint]):
     """The footprints united and grown by :data:`SLIVER` (empty geometry when there are none)."""
     import shapely
 
-    return shapely.union_all([p.geometry for p in prints]).buffer(SLIVER, quad_segs=2)
+    from .growth import unite
+
+    return unite(shapely.buffer([p.geometry for p in prints], SLIVER, quad_segs=2))
 
 
 def _frame(obstacles, spawn, margin: float):
@@ -346,15 +388,31 @@ class _Space:
     is reached from the outside at radius ``r`` when an outside disc covers it.
     """
 
-    def __init__(self, obstacles, frame):
-        self.obstacles, self.frame = obstacles, frame
+    def __init__(self, obstacles, frame, plugs: tuple = (), base: _Space | None = None):
+        self.obstacles, self.frame, self.plugs = obstacles, frame, plugs
+        self.base = obstacles if base is None else base.base        # the obstacles before any plug
+        self._grown = {} if base is None else base._grown           # ``base`` grown, per radius: shared
         self._cache: dict[float, tuple] = {}
+
+    def grown(self, r: float):
+        """The obstacles (plugs included) grown by ``r``: the unplugged ones are grown once per radius for
+        every plugged space, the plugs added to that."""
+        import shapely
+
+        from .growth import grown, unite
+
+        key = round(r, 6)
+        if key not in self._grown:
+            self._grown[key] = grown(self.base, r, quad_segs=8)
+        if not self.plugs:
+            return self._grown[key]
+        plugs = shapely.buffer(list(self.plugs), r, quad_segs=8) if r > 0 else list(self.plugs)
+        return unite([*shapely.get_parts(self._grown[key]), *plugs])
 
     def at(self, r: float):
         key = round(r, 6)
         if key not in self._cache:
-            grown = self.obstacles.buffer(r, quad_segs=8) if r > 0 else self.obstacles
-            parts = _components(self.frame.difference(grown))
+            parts = _components(self.frame.difference(self.grown(r)))
             outside = next((c for c in parts if _reaches_outside(c, self.frame)), None)
             self._cache[key] = (parts, outside)
         return self._cache[key]
@@ -370,6 +428,8 @@ class _Space:
         off; None when even MAX_GAP/2 does not, (0, 0) when it is cut off already."""
         if self.cut_off(point, 0.0):
             return 0.0, 0.0
+        if not self.cut_off(point, MAX_GAP / 2):   # a disc that passes there passes every smaller opening too
+            return None
         lo, hi = 0.0, 0.05
         while not self.cut_off(point, hi):
             if hi >= MAX_GAP / 2:
@@ -383,7 +443,9 @@ class _Space:
     def plugged(self, plug) -> _Space:
         import shapely
 
-        return _Space(shapely.union_all([self.obstacles, plug]), self.frame)
+        from .growth import unite
+
+        return _Space(unite([*shapely.get_parts(self.obstacles), plug]), self.frame, (*self.plugs, plug), self)
 
 
 @dataclass

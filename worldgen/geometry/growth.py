@@ -1,0 +1,77 @@
+"""Footprints united and grown by a radius, in time near linear in their number.
+
+GEOS buffers a many-part geometry by noding every offset curve against every other, and unites many polygons
+level by level, copying every disjoint part at every level: both grow much faster than the number of parts (10 000
+boxes 0.2 m apart: seconds per radius, gigabytes at the radii where the grown boxes overlap). Here each part is
+grown on its own (the Minkowski sum of a union is the union of the parts' sums, so the result is the same region),
+the grown parts are sorted into clusters whose envelopes overlap (a union-find over STRtree pairs), and only the
+parts of one cluster are united with each other. A part that touches nothing is taken as it is.
+
+Plain numbers in, plain numbers out: numpy and shapely, imported when first used.
+"""
+
+from __future__ import annotations
+
+DENSE = 2.0   # parts whose envelopes add up to this many times their common envelope are united in one go
+
+
+def clusters(geometries) -> list:
+    """Index arrays of the geometries whose envelopes overlap, transitively (each geometry in exactly one)."""
+    import numpy as np
+    import shapely
+
+    n = len(geometries)
+    if n == 0:
+        return []
+    a, b = shapely.STRtree(geometries).query(geometries)
+    label = np.arange(n)
+    while True:   # union-find, vectorised: hook each pair's larger root onto the smaller, then jump to roots
+        la, lb = label[a], label[b]
+        differ = la != lb
+        if not differ.any():
+            break
+        label[np.maximum(la[differ], lb[differ])] = np.minimum(la[differ], lb[differ])   # any one write wins
+        while True:
+            jumped = label[label]
+            if (jumped == label).all():
+                break
+            label = jumped
+    order = np.argsort(label, kind="stable")
+    return np.split(order, np.flatnonzero(np.diff(label[order])) + 1)
+
+
+def unite(geometries):
+    """The union of ``geometries`` (shapely polygons, any overlap), as one geometry; empty for none."""
+    import numpy as np
+    import shapely
+
+    geometries = np.asarray([g for g in geometries if g is not None and not g.is_empty], dtype=object)
+    if len(geometries) == 0:
+        return shapely.Polygon()
+    if len(geometries) == 1:
+        return shapely.make_valid(geometries[0]) if not geometries[0].is_valid else geometries[0]
+    bounds = shapely.bounds(geometries)
+    covered = np.prod(bounds[:, 2:] - bounds[:, :2], axis=1).sum()
+    x0, y0 = bounds[:, :2].min(axis=0)
+    x1, y1 = bounds[:, 2:].max(axis=0)
+    if covered > DENSE * (x1 - x0) * (y1 - y0):   # they overlap a lot: one union, which GEOS does well then
+        return shapely.union_all(geometries)
+    pieces = []
+    for group in clusters(geometries):
+        merged = geometries[group[0]] if len(group) == 1 and geometries[group[0]].is_valid else \
+            shapely.union_all(geometries[group])
+        pieces += [p for p in shapely.get_parts(merged) if p.geom_type == "Polygon" and not p.is_empty]
+    return pieces[0] if len(pieces) == 1 else shapely.MultiPolygon(pieces)
+
+
+def grown(geometry, r: float, quad_segs: int):
+    """``geometry`` (a polygon or a union of disjoint polygons) grown by ``r`` (its Minkowski sum with a disc,
+    arcs of ``quad_segs`` segments per quarter), as :func:`unite` unites the grown parts."""
+    import shapely
+
+    if r <= 0 or geometry.is_empty:
+        return geometry
+    parts = shapely.get_parts(geometry)
+    if len(parts) == 1:
+        return geometry.buffer(r, quad_segs=quad_segs)
+    return unite(shapely.buffer(parts, r, quad_segs=quad_segs))
