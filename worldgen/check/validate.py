@@ -26,6 +26,7 @@ from typing import Callable, Sequence
 from .checks import (GEOMETRIC_CHECKS, SDFORMAT_ABSENT, SIM_CHECKS, check_enclosed, check_parse,
                      check_spawn_clear, check_sdformat, floor_under, robot_body, sim_findings)
 from ..core.errors import InputError, SpecError, WorldFileError
+from ..core.inputs import check_regular
 from ..core.findings import Finding
 from .report import Result
 from ..spec.load import ROBOT_MODELS, SPEC_SUFFIXES, spec_beside
@@ -129,6 +130,7 @@ def plan(paths: Sequence[str | Path], options: Options) -> list[Job]:
         path = Path(given)
         if not path.exists():
             raise InputError("no such file or folder", path=path, hint="check the path")
+        check_regular(path, InputError, "input")
         kind = input_kind(path)
         if kind == "package":
             jobs += _package_jobs(path, options)

@@ -41,6 +41,7 @@ class Footprint:
 
     label: str
     geometry: object   # shapely geometry (Polygon / MultiPolygon)
+    note: str | None = None   # how the section was simplified (a mesh too tangled to cut exactly), if it was
 
 
 @dataclass(frozen=True)
@@ -80,6 +81,7 @@ class Enclosure:
     nearest: float | None = None
     rooms: tuple[tuple[float, float, float, float], ...] = ()
     more: bool = False      # the search stopped after MAX_GAP_ROUNDS gaps: there may be more
+    notes: tuple[str, ...] = ()   # footprints simplified on the way ("LABEL: why"), see mesh_section
 
 
 # --------------------------------------------------------------------------------------------------- slicing
@@ -180,91 +182,13 @@ def _sphere_section(shape: Shape, z: float):
     return shapely.Point(shape.position[:2]).buffer(math.sqrt(shape.radius ** 2 - d * d), quad_segs=CIRCLE_SEGMENTS)
 
 
-def mesh_section_segments(vertices, faces, z: float):
-    """The segments (K × 2 × 2, x/y) where a triangle mesh (world vertices) crosses the plane at height ``z``."""
-    import numpy as np
-
-    v, f = merged_mesh(vertices, faces)
-    if len(v) == 0 or len(f) == 0:
-        return np.zeros((0, 2, 2))
-    d = v[:, 2] - z
-    d[d == 0] = 1e-12            # a vertex exactly on the plane counts as just above it
-    above = d[f] > 0
-    f = f[above.any(axis=1) & ~above.all(axis=1)]
-    if len(f) == 0:
-        return np.zeros((0, 2, 2))
-    ring = np.roll(f, -1, axis=1)               # the three edges of each crossing triangle, each edge always
-    a, b = np.minimum(f, ring), np.maximum(f, ring)   # taken in the same direction so neighbours agree exactly
-    da, db = d[a], d[b]
-    crossing = (da > 0) != (db > 0)
-    t = np.where(crossing, da / np.where(crossing, da - db, 1.0), 0.0)
-    points = v[a][:, :, :2] + (v[b][:, :, :2] - v[a][:, :, :2]) * t[:, :, None]
-    order = np.argsort(~crossing, axis=1, kind="stable")[:, :2]   # the two crossing edges of each triangle
-    return np.take_along_axis(points, order[:, :, None], axis=1)
-
-
-def merged_mesh(vertices, faces):
-    """Vertices (rounded to 1 nm) made unique and faces renumbered, so that triangles sharing an edge share
-    its vertex indices even when the file repeated the vertices per triangle."""
-    import numpy as np
-
-    v = np.round(np.asarray(vertices, dtype=float).reshape(-1, 3), 9)
-    f = np.asarray(faces, dtype=np.int64).reshape(-1, 3)
-    if len(v) == 0:
-        return v, f
-    unique, index = np.unique(v, axis=0, return_inverse=True)
-    return unique, index.reshape(-1)[f]
-
-
-def _inside_by_parity(point, segments) -> bool:
-    """Even-odd rule against loose segments: works for closed sections even when the loops are not merged."""
-    x1, y1 = segments[:, 0, 0], segments[:, 0, 1]
-    x2, y2 = segments[:, 1, 0], segments[:, 1, 1]
-    px, py = point
-    straddle = (y1 > py) != (y2 > py)
-    with_y = (y2 - y1)
-    safe = with_y != 0
-    xs = x1 + (py - y1) * (x2 - x1) / (with_y + ~safe)
-    return bool((straddle & safe & (px < xs)).sum() % 2)
-
-
 def _mesh_section(shape: Shape, z: float):
-    """A mesh's section: the solid faces of the section (even-odd rule) plus every cut segment as a thin strip,
-    so that a mesh that is not closed still blocks where it has surface."""
-    import shapely
+    """A mesh's section (see :mod:`.mesh_section`), with a note when it had to be simplified."""
+    from .mesh_section import mesh_footprint
 
     if shape.vertices is None or shape.faces is None:
-        return None
-    world = _to_world(shape, shape.vertices)
-    if world[:, 2].min() > z or world[:, 2].max() < z:
-        return None
-    segments = mesh_section_segments(world, shape.faces, z)
-    if len(segments) == 0:
-        return None
-    lines = shapely.multilinestrings(segments)
-    strips = lines.buffer(SLIVER, quad_segs=1)
-    if not _closed_surface(shape.faces, shape.vertices):
-        return strips
-    noded = shapely.get_parts(shapely.union_all(lines))
-    faces = shapely.get_parts(shapely.polygonize(noded))
-    solid = [p for p in faces if p.area > 0 and _inside_by_parity(_probe(p), segments)]
-    return shapely.union_all([strips, *solid]) if solid else strips
-
-
-def _closed_surface(faces, vertices) -> bool:
-    """True when every edge of the mesh is shared by exactly two triangles (after merging repeated vertices),
-    so that its sections bound solid material; a loose sheet only blocks along its surface."""
-    import numpy as np
-
-    _, f = merged_mesh(vertices, faces)
-    edges = np.sort(np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]]), axis=1)
-    _, counts = np.unique(edges, axis=0, return_counts=True)
-    return bool(len(counts)) and bool((counts == 2).all())
-
-
-def _probe(polygon) -> tuple[float, float]:
-    p = polygon.representative_point()
-    return p.x, p.y
+        return None, None
+    return mesh_footprint(_to_world(shape, shape.vertices), shape.vertices, shape.faces, z, SLIVER)
 
 
 def section(shape: Shape, z: float):
@@ -276,7 +200,7 @@ def section(shape: Shape, z: float):
     if shape.kind == "sphere" and shape.radius:
         return _sphere_section(shape, z)
     if shape.kind == "mesh":
-        return _mesh_section(shape, z)
+        return _mesh_section(shape, z)[0]
     return None   # ground planes and degenerate shapes
 
 
@@ -284,9 +208,9 @@ def footprints(scene: Scene, z: float) -> list[Footprint]:
     """Every shape of ``scene`` cut at height ``z``, in scene order (shapes the plane misses are left out)."""
     out = []
     for shape in scene.obstacles():
-        geometry = section(shape, z)
+        geometry, note = _mesh_section(shape, z) if shape.kind == "mesh" else (section(shape, z), None)
         if geometry is not None and not geometry.is_empty:
-            out.append(Footprint(shape.label, geometry))
+            out.append(Footprint(shape.label, geometry, note))
     return out
 
 
@@ -642,5 +566,9 @@ def _closed_regions(parts, frame, point) -> tuple[tuple[float, float, float, flo
 
 
 def enclosure(scene: Scene, spawn: tuple[float, float], height: float) -> Enclosure:
-    """:func:`analyse` of the scene cut at ``height``."""
-    return analyse(footprints(scene, height), spawn, height)
+    """:func:`analyse` of the scene cut at ``height``, with the notes of any footprint simplified on the way."""
+    from dataclasses import replace
+
+    prints = footprints(scene, height)
+    notes = tuple(f"{p.label}: {p.note}" for p in prints if p.note)
+    return replace(analyse(prints, spawn, height), notes=notes)

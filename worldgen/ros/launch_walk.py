@@ -62,10 +62,11 @@ class LaunchRead:
 
 def parse_launch_xml(path: Path, what: str = "launch file"):
     """The root element of the XML file ``path``; WorldFileError when it cannot be read or is not XML."""
+    from ..core.inputs import read_capped
     from ..core.safexml import parse_bytes
 
     try:
-        data = Path(path).read_bytes()
+        data = read_capped(path, what=what)
     except OSError as err:
         raise WorldFileError(f"cannot read the {what}: {err.strerror or err}", path=path,
                              hint="check the path") from None

@@ -12,6 +12,7 @@ from typing import Callable, Optional, Tuple
 import numpy as np
 
 from ..core.errors import WorldFileError
+from ..core.inputs import read_capped
 from .context import ReadContext, SdfFile, describe_file, parse_sdf
 from .frames import Frames
 from .resolve import STOCK_MODELS, Resolved, model_sdf_file, uri_fix
@@ -87,7 +88,7 @@ def load_included(ctx: ReadContext, resolved: Resolved, where: str, parent_stati
         ctx.note("include", "error", f"{resolved.uri} {why}", where, "break the include cycle")
         return None
     try:
-        root = parse_sdf(path.read_bytes(), path)
+        root = parse_sdf(read_capped(path, what="model file"), path)
     except (WorldFileError, OSError) as err:
         ctx.note("include", "error", f"included model {resolved.uri} cannot be read: {err}", where,
                  "fix the included file")
