@@ -128,13 +128,17 @@ name: bomb
 
 
 def speckled_map(tmp: Path, side: int, density: float = 0.3) -> Path:
-    """A ``side`` × ``side`` map_server map whose pixels are walls at random (seeded), a SLAM map's noise."""
+    """A ``side`` × ``side`` map_server map: rooms 100 pixels wide (walls 2 pixels thick) under a salt of wall
+    pixels at random (``density`` of all pixels, seeded), a noisy SLAM map's specks."""
     import numpy as np
     from PIL import Image
 
     rng = np.random.default_rng(side)
-    pixels = np.where(rng.random((side, side)) < density, 0, 254).astype(np.uint8)
-    Image.fromarray(pixels, mode="L").save(tmp / "speckle.pgm")
+    walls = np.zeros((side, side), dtype=bool)
+    for k in range(0, side, 100):
+        walls[k:k + 2, :] = walls[:, k:k + 2] = True
+    walls |= rng.random((side, side)) < density
+    Image.fromarray(np.where(walls, 0, 254).astype(np.uint8), mode="L").save(tmp / "speckle.pgm")
     path = tmp / "speckle.yaml"
     path.write_text("image: speckle.pgm\nresolution: 0.05\norigin: [0.0, 0.0, 0.0]\nnegate: 0\n"
                     "occupied_thresh: 0.65\nfree_thresh: 0.196\n")
@@ -204,10 +208,12 @@ CASES = [
          (60.0, 3000.0)),
     Case("mesh-soup-10000", lambda t: _validate(mesh_soup(t, 10000)), (10.0, 1000.0)),
     Case("mesh-soup-100000", lambda t: _validate(mesh_soup(t, 100000)), (20.0, 1500.0)),
-    Case("map-speckle-1500", lambda t: ["build", str(speckled_map(t, 1500)), "-o", str(t / "out.world")],
+    Case("map-speckle-1500-30%", lambda t: ["build", str(speckled_map(t, 1500)), "-o", str(t / "out.world")],
          (10.0, 1000.0)),
-    Case("map-20000px-side", lambda t: ["build", str(speckled_map(t, 20000, 0.0001)), "-o", str(t / "o.world")],
-         (10.0, 2000.0)),
+    Case("map-speckle-1500-2%", lambda t: ["build", str(speckled_map(t, 1500, 0.02)), "-o", str(t / "o.world")],
+         (10.0, 1000.0)),
+    Case("map-9000-square", lambda t: ["build", str(speckled_map(t, 9000, 0.0)), "-o", str(t / "o.world")],
+         REFUSAL, (2,)),
     Case("yaml-merge-bomb", lambda t: ["build", str(_write(t, "m.yaml", MERGE_BOMB)), "-o", str(t / "o.world")],
          REFUSAL, (2,)),
     Case("yaml-alias-bomb", lambda t: ["build", str(_write(t, "a.yaml", ALIAS_BOMB)), "-o", str(t / "o.world")],

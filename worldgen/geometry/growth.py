@@ -20,22 +20,13 @@ def clusters(geometries) -> list:
     import numpy as np
     import shapely
 
+    from ..core.labels import connected_labels
+
     n = len(geometries)
     if n == 0:
         return []
     a, b = shapely.STRtree(geometries).query(geometries)
-    label = np.arange(n)
-    while True:   # union-find, vectorised: hook each pair's larger root onto the smaller, then jump to roots
-        la, lb = label[a], label[b]
-        differ = la != lb
-        if not differ.any():
-            break
-        label[np.maximum(la[differ], lb[differ])] = np.minimum(la[differ], lb[differ])   # any one write wins
-        while True:
-            jumped = label[label]
-            if (jumped == label).all():
-                break
-            label = jumped
+    label = connected_labels(n, a, b)
     order = np.argsort(label, kind="stable")
     return np.split(order, np.flatnonzero(np.diff(label[order])) + 1)
 

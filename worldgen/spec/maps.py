@@ -38,6 +38,9 @@ IMAGE_SUFFIXES = (".pgm", ".png", ".bmp", ".jpg", ".jpeg", ".gif", ".tif", ".tif
 POST_PREFIX = "map_post_"
 _IMAGE_MODES = ("1", "L", "LA", "P", "PA", "RGB", "RGBA")   # 8-bit grey or colour, as map_server's loader takes
 _YAW_EPS = 1e-6                  # map_saver writes a zero yaw as 0.000000 or -0.000000
+MAX_MAP_PIXELS = 64_000_000      # width × height of the image (a 8000 × 8000 map); larger ones are refused
+MAX_MAP_PIECES = 50_000          # walls and posts one map may become; past it specks are removed, then refused
+SPECK_PIXELS = 5                 # occupied blobs (8-connected) smaller than this are specks: SLAM noise
 
 
 @dataclass(frozen=True)
@@ -178,6 +181,10 @@ def read_occupancy(m: MapFile) -> Occupancy:
         with Image.open(m.image) as img:
             if img.mode not in _IMAGE_MODES:
                 raise fail(f"has {img.mode} pixels", "save it as an 8-bit grey PGM or PNG, as map_saver does")
+            if img.size[0] * img.size[1] > MAX_MAP_PIXELS:
+                raise fail(f"has {img.size[0]} × {img.size[1]} pixels, more than the {MAX_MAP_PIXELS:,} worldgen "
+                           "reads", "crop the map to the building, or save it at a coarser resolution (see "
+                           "Limits in the README)")
             img = img.convert("L" if img.mode == "1" else "RGBA" if img.mode in ("P", "PA") else img.mode)
             pixels = np.asarray(img)
     except Image.DecompressionBombError:
@@ -202,13 +209,73 @@ def read_occupancy(m: MapFile) -> Occupancy:
                    f"{_m(m.occupied_thresh)} (the highest is {highest:.3f})",
                    "check negate (1 when walls are light) and occupied_thresh")
     top, bottom, left, right = int(rows_hit[0]), int(rows_hit[-1]), int(columns_hit[0]), int(columns_hit[-1])
-    crop = occupied[top:bottom + 1, left:right + 1]
+    crop = _bounded(occupied[top:bottom + 1, left:right + 1], fail)
     text = np.where(crop, ord("#"), ord(".")).astype(np.uint8).tobytes().decode("ascii")
     n = right - left + 1
     rows = tuple(text[i:i + n] for i in range(0, len(text), n))
     res = m.resolution
     origin = (round(m.origin[0] + left * res, 9), round(m.origin[1] + (height - 1 - bottom) * res, 9))
     return Occupancy(rows=rows, top=top, left=left, origin=origin)
+
+
+def pieces(occupied) -> int:
+    """At most how many walls and posts the grid planner makes of the ``occupied`` pixels: its runs of two or
+    more along rows and along columns, and its lone pixels."""
+    import numpy as np
+
+    def runs(grid) -> int:
+        padded = np.pad(grid, ((0, 0), (1, 1)))
+        starts, ends = np.nonzero(np.diff(padded.astype(np.int8), axis=1) == 1), \
+            np.nonzero(np.diff(padded.astype(np.int8), axis=1) == -1)
+        return int(((ends[1] - starts[1]) >= 2).sum())
+
+    p = np.pad(occupied, 1)
+    lone = occupied & ~(p[:-2, 1:-1] | p[2:, 1:-1] | p[1:-1, :-2] | p[1:-1, 2:])
+    return runs(occupied) + runs(occupied.T) + int(lone.sum())
+
+
+def without_specks(occupied, smallest: int = SPECK_PIXELS):
+    """``occupied`` without its specks: blobs of fewer than ``smallest`` pixels (8-connected)."""
+    import numpy as np
+
+    from ..core.labels import connected_labels
+
+    height, width = occupied.shape
+    index = np.full(occupied.shape, -1, dtype=np.int64)
+    rows, columns = np.nonzero(occupied)
+    index[rows, columns] = np.arange(len(rows))
+    a, b = [], []
+    for dr, dc in ((0, 1), (1, 0), (1, 1), (1, -1)):   # each neighbour pair once: (r, c) and (r + dr, c + dc)
+        here = index[:height - dr, max(0, -dc):width - max(0, dc)]
+        there = index[dr:, max(0, dc):width - max(0, -dc)]
+        both = (here >= 0) & (there >= 0)
+        a.append(here[both])
+        b.append(there[both])
+    label = connected_labels(len(rows), np.concatenate(a), np.concatenate(b))
+    sizes = np.bincount(label, minlength=len(rows))
+    keep = np.zeros_like(occupied)
+    big = sizes[label] >= smallest
+    keep[rows[big], columns[big]] = True
+    return keep
+
+
+def _bounded(occupied, fail):
+    """``occupied``, or without specks when it would make more than :data:`MAX_MAP_PIECES` walls and posts;
+    ``fail`` (SpecError) when even that is too many."""
+    count = pieces(occupied)
+    if count <= MAX_MAP_PIECES:
+        return occupied
+    cleaned = without_specks(occupied)
+    left = pieces(cleaned)
+    if left > MAX_MAP_PIECES:
+        raise fail(f"would make {left:,} walls and posts even without its specks (blobs under {SPECK_PIXELS} pixels), "
+                   f"more than the {MAX_MAP_PIECES:,} worldgen builds from one map",
+                   "clean the noise off the map in an image editor, or crop it to the building (see Limits in the "
+                   "README)")
+    if not cleaned.any():
+        raise fail(f"holds nothing but specks (blobs under {SPECK_PIXELS} pixels) once too many to build",
+                   "clean the noise off the map in an image editor")
+    return cleaned
 
 
 def map_parts(m: MapFile, base: WallStyle, line: int | None) -> tuple[list[Segment], list[Obstacle]]:
