@@ -13,8 +13,9 @@ from shapely.geometry import LineString, Point, Polygon
 from shapely.ops import unary_union
 
 from worldgen.core.errors import SpecError
-from worldgen.geometry.building import JOIN_TOLERANCE, build_geometry
-from worldgen.spec.load import Material, Obstacle, Opening, Room, Segment, Spec, WallStyle
+from worldgen.geometry.building import build_geometry
+from worldgen.geometry.joins import JOIN_TOLERANCE
+from worldgen.spec.model import Material, Obstacle, Opening, Room, Segment, Spec, WallStyle
 
 STYLE = WallStyle()
 T = STYLE.thickness

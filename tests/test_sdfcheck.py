@@ -14,7 +14,7 @@ import pytest
 from worldgen.geometry.building import build_geometry
 from worldgen.sdf.writer import SDF_VERSIONS, model_sdf, world_sdf
 from worldgen.check.sdformat import Message, messages, sdf_path, sdformat_check
-from worldgen.spec.load import Material, Obstacle, Opening, Room, Segment, Spec, WallStyle
+from worldgen.spec.model import Material, Obstacle, Opening, Room, Segment, Spec, WallStyle
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 

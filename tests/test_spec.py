@@ -10,8 +10,8 @@ from conftest import CliRunner
 
 from worldgen.cli import main
 from worldgen.core.errors import SpecError
-from worldgen.spec.load import (DEFAULT_HEIGHT, DEFAULT_MATERIAL, DEFAULT_THICKNESS, Material, load_spec, parse_spec,
-                           starter_spec)
+from worldgen.spec.load import load_spec, parse_spec, starter_spec
+from worldgen.spec.model import DEFAULT_HEIGHT, DEFAULT_MATERIAL, DEFAULT_THICKNESS, Material
 
 DESIGN_EXAMPLE = """\
 name: enclosed_room

@@ -18,7 +18,7 @@ from shapely.ops import unary_union
 from worldgen.cli import main
 from worldgen.geometry.building import build_geometry
 from worldgen.sdf.writer import SDF_VERSIONS, fmt, model_config, model_sdf, planned_files, world_sdf
-from worldgen.spec.load import Material, Obstacle, Opening, Room, Spec, WallStyle
+from worldgen.spec.model import Material, Obstacle, Opening, Room, Spec, WallStyle
 
 STYLE = WallStyle()
 T = STYLE.thickness

@@ -19,7 +19,8 @@ from typing import Sequence, Tuple
 
 from .spec.grid import POST_PREFIX
 from .core.scene import Scene
-from .spec.load import SPEC_SUFFIXES, Spec, load_spec
+from .spec.load import load_spec
+from .spec.model import SPEC_SUFFIXES, Spec
 
 FIGSIZE = (8.0, 8.0)   # inches
 DPI = 100              # so a picture is 800 × 800 pixels

@@ -19,7 +19,7 @@ from pathlib import Path
 
 from ..core.findings import Finding
 from ..core.scene import Scene
-from ..spec.load import ROBOT_MODELS
+from ..spec.model import ROBOT_MODELS
 
 GEOMETRIC_CHECKS = ("parse", "enclosed", "spawn-clear")
 SIM_CHECKS = ("settle", "lidar", "spin", "stop-at-wall")

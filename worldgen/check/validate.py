@@ -29,7 +29,8 @@ from ..core.errors import InputError, SpecError, WorldFileError
 from ..core.inputs import check_regular
 from ..core.findings import Finding
 from .report import Result
-from ..spec.load import ROBOT_MODELS, SPEC_SUFFIXES, spec_beside
+from ..spec.load import spec_beside
+from ..spec.model import ROBOT_MODELS, SPEC_SUFFIXES
 
 LAUNCH_SUFFIXES = (".launch", ".launch.xml")
 NO_HIT_CHOICES = ("inf", "zero")

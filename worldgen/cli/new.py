@@ -6,8 +6,6 @@ from pathlib import Path
 
 import click
 
-from ..core.fsio import write_file
-from ..spec.load import starter_spec
 
 
 @click.command("new")
@@ -19,6 +17,9 @@ def new(name: str, output: Path | None, force: bool) -> None:
     """Write a starter floorplan spec NAME.yaml: a closed 5 m x 5 m room with a window, an obstacle and the
     robot in the middle (a door offered, commented out), every key commented. Build it with
     `worldgen build NAME.yaml`."""
+    from ..core.fsio import write_file
+    from ..spec.load import starter_spec
+
     text = starter_spec(name)
     path = write_file(output or Path(f"{name}.yaml"), text, force=force)
     click.echo(f"wrote {path}")

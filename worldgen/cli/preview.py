@@ -9,7 +9,7 @@ import click
 
 from ..core.errors import InputError
 from ..core.fsio import check_free, write_file
-from ..spec.load import ROBOT_MODELS
+from ..spec.model import ROBOT_MODELS
 
 
 @click.command("preview")

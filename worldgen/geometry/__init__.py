@@ -1,2 +1,3 @@
-"""Plane geometry: a spec's walls, joins and openings as boxes (:mod:`.building`, on the build path: no shapely),
-and a scene's rooms, gaps and free floor (:mod:`.enclosure`, :mod:`.placement`, with shapely)."""
+"""Plane geometry: a spec's walls, joins and openings as boxes (:mod:`.building`, over :mod:`.runs`, :mod:`.joins`,
+:mod:`.openings` and :mod:`.vectors`; on the build path: no shapely), and a scene's rooms, gaps and free floor
+(:mod:`.enclosure`, :mod:`.placement`, with shapely)."""

@@ -20,7 +20,7 @@ from ..core.errors import InputError
 from ..core.numbers import format_number
 from ..core.resources import render_template
 from ..core.packages import manifest_name
-from ..spec.load import ROBOT_MODELS
+from ..spec.model import ROBOT_MODELS
 
 MODEL_CHOICES = ("env",) + ROBOT_MODELS   # "env": the model comes from $(env TURTLEBOT3_MODEL) at run time
 

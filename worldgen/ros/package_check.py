@@ -16,7 +16,7 @@ from ..core.errors import WorldFileError
 from ..core.findings import Finding
 from .launch_reader import read_launch
 from ..core.packages import manifest_name
-from ..spec.load import ROBOT_MODELS
+from ..spec.model import ROBOT_MODELS
 
 
 def package_launch_files(pkg_dir: str | Path) -> list[Path]:

@@ -14,7 +14,7 @@ from pathlib import Path
 from lxml import etree
 
 from ..geometry.building import Building, Wall, build_geometry, obstacle_names
-from ..spec.load import Material, Obstacle, Spec
+from ..spec.model import Material, Obstacle, Spec
 
 SDF_VERSIONS = ("1.6", "1.7", "1.8", "1.9")
 DEFAULT_SDF_VERSION = "1.6"     # Gazebo 9 and 11 (ROS Melodic and Noetic) read it

@@ -25,9 +25,12 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..core.errors import SpecError
+from . import values
 from .grid import plan_grid
-from .load import (LIMIT, TOP_KEYS, Obstacle, Segment, Spec, WallStyle, _compose, _describe, _describe_sized, _m,
-                   _Node, _Reader, _suggest_name, did_you_mean)
+from .messages import describe, describe_sized, did_you_mean, metres, suggest_name
+from .model import LIMIT, TOP_KEYS, Obstacle, Segment, Spec, WallStyle
+from .nodes import Node, compose
+from .values import Source
 
 MAP_KEYS = ("image", "resolution", "origin", "negate", "occupied_thresh", "free_thresh", "mode")
 REQUIRED_KEYS = ("image", "resolution", "origin")
@@ -74,79 +77,79 @@ def is_map_yaml(keys) -> bool:
     return "image" in keys
 
 
-def read_map_yaml(reader: _Reader, root: _Node) -> MapFile:
-    """Check a map_server YAML's keys (``reader.source`` names it in messages); the image is not opened here."""
+def read_map_yaml(src: Source, root: Node) -> MapFile:
+    """Check a map_server YAML's keys (``src.path`` names it in messages); the image is not opened here."""
     keys = root.value
     for key, line in root.key_lines.items():
         if key in MAP_KEYS:
             continue
         hint = f"a map_server map takes: {', '.join(MAP_KEYS)}"
         if key in TOP_KEYS:
-            own = Path(reader.source or "map.yaml").name
+            own = Path(src.path or "map.yaml").name
             hint = f"'{key}' belongs in a spec: write one with name: …, map: {own} and {key}: …"
         guess = did_you_mean(key, MAP_KEYS)
-        reader.fail(f"unknown key '{key}' in the map_server map{guess}", line, hint=hint)
+        src.fail(f"unknown key '{key}' in the map_server map{guess}", line, hint=hint)
     for key in REQUIRED_KEYS:
         if key not in keys:
             example = {"resolution": "resolution: 0.05", "origin": "origin: [-10.0, -10.0, 0.0]"}.get(key, key)
-            reader.fail(f"the map_server map has no '{key}'", root.line, hint=f"add {example}")
-    yaml_path = Path(reader.source or ".")
+            src.fail(f"the map_server map has no '{key}'", root.line, hint=f"add {example}")
+    yaml_path = Path(src.path or ".")
 
     node = keys["image"]
     if not isinstance(node.value, str) or not node.value.strip():
-        reader.fail(f"image must be the image file's name, not {_what(node.value)}", node.line,
-                    hint="e.g. image: map.pgm (relative to this file)")
+        src.fail(f"image must be the image file's name, not {_what(node.value)}", node.line,
+                 hint="e.g. image: map.pgm (relative to this file)")
     image = yaml_path.parent / node.value   # an absolute path stays as it is, as map_server reads it
     if not image.is_file():
         beside = yaml_path.parent / Path(node.value).name
         hint = (f"{beside.name} lies beside this file: write image: {beside.name}" if beside.is_file() else
                 "map_server looks for the image relative to the YAML's folder; give its name or full path")
         what = "is a folder, not an image" if image.is_dir() else "does not exist"
-        reader.fail(f"the map's image {image} {what}", node.line, hint=hint)
+        src.fail(f"the map's image {image} {what}", node.line, hint=hint)
 
-    resolution = reader.length(keys["resolution"], "the map's resolution")
+    resolution = values.length(src, keys["resolution"], "the map's resolution")
     origin = keys["origin"]
     if not isinstance(origin.value, list) or len(origin.value) not in (2, 3):
-        reader.fail(f"the map's origin must be [x, y, yaw], not {_what(origin.value)}", origin.line,
-                    hint="e.g. origin: [-10.0, -10.0, 0.0]: where the image's bottom-left corner lies, in metres")
-    x = reader.coordinate(origin.value[0], "x of the map's origin")
-    y = reader.coordinate(origin.value[1], "y of the map's origin")
+        src.fail(f"the map's origin must be [x, y, yaw], not {_what(origin.value)}", origin.line,
+                 hint="e.g. origin: [-10.0, -10.0, 0.0]: where the image's bottom-left corner lies, in metres")
+    x = values.coordinate(src, origin.value[0], "x of the map's origin")
+    y = values.coordinate(src, origin.value[1], "y of the map's origin")
     if len(origin.value) == 3:
-        yaw = reader.angle(origin.value[2], "yaw of the map's origin")
+        yaw = values.angle(src, origin.value[2], "yaw of the map's origin")
         if abs(yaw) > _YAW_EPS:
-            reader.fail(f"the map's origin has a yaw of {_m(yaw)} rad; worldgen lays a map's pixels along x and y, "
-                        "unrotated (amcl and costmap_2d ignore the yaw too)", origin.value[2].line,
-                        hint="write 0 for the yaw, or rotate the image itself")
+            src.fail(f"the map's origin has a yaw of {metres(yaw)} rad; worldgen lays a map's pixels along x and y, "
+                     "unrotated (amcl and costmap_2d ignore the yaw too)", origin.value[2].line,
+                     hint="write 0 for the yaw, or rotate the image itself")
 
     negate = False
     if "negate" in keys:
         value = keys["negate"].value
         if value not in (0, 1) or isinstance(value, float):   # True and False are 1 and 0
-            reader.fail(f"negate must be 0 or 1, not {_what(value)}", keys["negate"].line,
-                        hint="0: dark pixels are walls (map_saver's maps); 1: light pixels are walls")
+            src.fail(f"negate must be 0 or 1, not {_what(value)}", keys["negate"].line,
+                     hint="0: dark pixels are walls (map_saver's maps); 1: light pixels are walls")
         negate = bool(value)
     thresholds = {}
     for key, default in (("occupied_thresh", OCCUPIED_THRESH), ("free_thresh", FREE_THRESH)):
         if key not in keys:
             thresholds[key] = default
             continue
-        value = reader.number(keys[key], key, hint="a fraction from 0 to 1, e.g. 0.65")
+        value = values.number(src, keys[key], key, hint="a fraction from 0 to 1, e.g. 0.65")
         if not 0 <= value <= 1:
-            reader.fail(f"{key} is {_m(value)}, outside 0–1", keys[key].line,
-                        hint=f"thresholds are occupancy fractions; map_server's default is {default}")
+            src.fail(f"{key} is {metres(value)}, outside 0–1", keys[key].line,
+                     hint=f"thresholds are occupancy fractions; map_server's default is {default}")
         thresholds[key] = value
     if thresholds["free_thresh"] > thresholds["occupied_thresh"]:
         key = "free_thresh" if "free_thresh" in keys else "occupied_thresh"
-        reader.fail(f"free_thresh {_m(thresholds['free_thresh'])} is above occupied_thresh "
-                    f"{_m(thresholds['occupied_thresh'])}", keys[key].line,
-                    hint=f"free_thresh must be at most occupied_thresh (map_server's: {FREE_THRESH} and "
-                         f"{OCCUPIED_THRESH})")
+        src.fail(f"free_thresh {metres(thresholds['free_thresh'])} is above occupied_thresh "
+                 f"{metres(thresholds['occupied_thresh'])}", keys[key].line,
+                 hint=f"free_thresh must be at most occupied_thresh (map_server's: {FREE_THRESH} and "
+                      f"{OCCUPIED_THRESH})")
     mode = "trinary"
     if "mode" in keys:
         if keys["mode"].value == "raw":
-            reader.fail("mode raw has no thresholds, so it does not say which pixels are walls",
-                        keys["mode"].line, hint="use mode: trinary (walls above occupied_thresh)")
-        mode = reader.text(keys["mode"], "the map's mode", MODES)
+            src.fail("mode raw has no thresholds, so it does not say which pixels are walls",
+                     keys["mode"].line, hint="use mode: trinary (walls above occupied_thresh)")
+        mode = values.text(src, keys["mode"], "the map's mode", MODES)
     return MapFile(path=yaml_path, image=image, resolution=resolution, origin=(x, y), negate=negate,
                    mode=mode, line=node.line, **thresholds)
 
@@ -160,12 +163,12 @@ def load_map_yaml(path: Path) -> MapFile:
                         hint="map: names the map's YAML file (map.yaml), not its image") from None
     except OSError as err:
         raise SpecError(f"cannot be read: {err.strerror}", path=path) from None
-    reader = _Reader(str(path))
-    root = _compose(text, str(path))
+    src = Source(str(path))
+    root = compose(text, str(path))
     if root is None or not isinstance(root.value, dict) or not is_map_yaml(root.value):
-        reader.fail("is not a map_server map: it has no 'image' key", root.line if root else None,
-                    hint="map: names the YAML map_saver writes (image:, resolution:, origin: …)")
-    return read_map_yaml(reader, root)
+        src.fail("is not a map_server map: it has no 'image' key", root.line if root else None,
+                 hint="map: names the YAML map_saver writes (image:, resolution:, origin: …)")
+    return read_map_yaml(src, root)
 
 
 def read_occupancy(m: MapFile) -> Occupancy:
@@ -206,7 +209,7 @@ def read_occupancy(m: MapFile) -> Occupancy:
     if not rows_hit.size:
         highest = occupancy[np.unique(sums)].max()
         raise fail(f"has no occupied pixel: none of its {width} × {height} has an occupancy above occupied_thresh "
-                   f"{_m(m.occupied_thresh)} (the highest is {highest:.3f})",
+                   f"{metres(m.occupied_thresh)} (the highest is {highest:.3f})",
                    "check negate (1 when walls are light) and occupied_thresh")
     top, bottom, left, right = int(rows_hit[0]), int(rows_hit[-1]), int(columns_hit[0]), int(columns_hit[-1])
     crop = _bounded(occupied[top:bottom + 1, left:right + 1], fail)
@@ -286,7 +289,7 @@ def map_parts(m: MapFile, base: WallStyle, line: int | None) -> tuple[list[Segme
     (x0, y0), rows, columns = grid.origin, len(grid.rows), len(grid.rows[0])
     if max(abs(v) for v in (x0, y0, x0 + columns * res, y0 + rows * res)) > LIMIT:
         raise SpecError(f"the map's walls reach farther than {LIMIT:g} m from the origin ({columns} × {rows} pixels "
-                        f"of {_m(res)} m from ({_m(x0)}, {_m(y0)}))", path=m.path, line=m.line,
+                        f"of {metres(res)} m from ({metres(x0)}, {metres(y0)}))", path=m.path, line=m.line,
                         hint="check the resolution (metres per pixel) and the origin")
     plan = plan_grid(grid.rows, res, grid.origin, source=str(m.path))
     style = WallStyle(thickness=res, height=base.height, material=base.material)
@@ -296,30 +299,30 @@ def map_parts(m: MapFile, base: WallStyle, line: int | None) -> tuple[list[Segme
     return segments, posts
 
 
-def map_spec(reader: _Reader, root: _Node) -> Spec:
+def map_spec(src: Source, root: Node) -> Spec:
     """A map_server YAML read as a whole spec: the world is named after the file; default wall height and material;
     no robot (``worldgen validate`` then spawns it at the origin)."""
-    m = read_map_yaml(reader, root)
+    m = read_map_yaml(src, root)
     segments, posts = map_parts(m, WallStyle(), m.line)
-    return Spec(name=_suggest_name(m.path.stem), segments=tuple(segments), obstacles=tuple(posts),
-                source=reader.source)
+    return Spec(name=suggest_name(m.path.stem), segments=tuple(segments), obstacles=tuple(posts),
+                source=src.path)
 
 
-def spec_map_parts(reader: _Reader, node: _Node, base: WallStyle) -> tuple[list[Segment], list[Obstacle]]:
+def spec_map_parts(src: Source, node: Node, base: WallStyle) -> tuple[list[Segment], list[Obstacle]]:
     """A spec's ``map: FILE``: the map's walls, with the spec's wall height and material."""
     if not isinstance(node.value, str) or not node.value.strip():
-        reader.fail(f"map must name a map_server YAML file, not {_what(node.value)}", node.line,
-                    hint="e.g. map: lab.yaml (relative to this spec), the file map_saver wrote")
-    path = Path(reader.source or ".").parent / node.value
+        src.fail(f"map must name a map_server YAML file, not {_what(node.value)}", node.line,
+                 hint="e.g. map: lab.yaml (relative to this spec), the file map_saver wrote")
+    path = Path(src.path or ".").parent / node.value
     if path.suffix.lower() in IMAGE_SUFFIXES:
-        reader.fail(f"map names an image ({path.name}); it must name the map's YAML, which gives its resolution "
-                    "and origin", node.line, hint=f"write map: {path.with_suffix('.yaml').name}, the file map_saver "
-                                                   "wrote beside the image")
+        src.fail(f"map names an image ({path.name}); it must name the map's YAML, which gives its resolution "
+                 "and origin", node.line, hint=f"write map: {path.with_suffix('.yaml').name}, the file map_saver "
+                                                "wrote beside the image")
     if not path.is_file():
-        reader.fail(f"the map file {path} {'is a folder' if path.is_dir() else 'does not exist'}", node.line,
-                    hint="map: is relative to this spec's folder")
+        src.fail(f"the map file {path} {'is a folder' if path.is_dir() else 'does not exist'}", node.line,
+                 hint="map: is relative to this spec's folder")
     return map_parts(load_map_yaml(path), base, node.line)
 
 
 def _what(value: object) -> str:
-    return _describe_sized(value) if isinstance(value, list) else _describe(value)
+    return describe_sized(value) if isinstance(value, list) else describe(value)

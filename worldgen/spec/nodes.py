@@ -1,0 +1,100 @@
+"""YAML text composed into line-numbered nodes.
+
+The text is composed into YAML nodes (not constructed straight to Python) so that every value keeps the line it
+came from; each check of the spec reader (:mod:`worldgen.spec.values` and the modules reading a spec's parts) then
+names the file and line of the value to change.
+"""
+
+from __future__ import annotations
+
+import yaml
+
+from ..core.errors import SpecError
+
+
+class Node:
+    """A YAML value with its line (1-based): ``value`` is a dict of key → Node, a list of Node, or a scalar."""
+
+    __slots__ = ("value", "line", "key_lines", "style")
+
+    def __init__(self, value, line: int, key_lines: dict[str, int] | None = None, style: str | None = None):
+        self.value, self.line, self.key_lines, self.style = value, line, key_lines or {}, style
+
+
+def compose(text: str, source: str | None) -> Node | None:
+    """The spec text as Nodes. libyaml's parser (``yaml.CSafeLoader``, when PyYAML was built with it) is several
+    times faster on big specs; text it refuses is parsed again by the pure-Python parser, whose messages and
+    marks the errors below are worded for, so an error reads the same (same line) with or without libyaml."""
+    fast = getattr(yaml, "CSafeLoader", None)
+    try:
+        if fast is not None:
+            try:
+                return _nodes(fast(text), source)
+            except yaml.YAMLError:
+                pass   # reported by the pure-Python parser, below
+        return _nodes(yaml.SafeLoader(text), source)
+    except yaml.MarkedYAMLError as err:
+        mark = err.problem_mark or err.context_mark
+        problem = err.problem or "the text is not valid YAML"
+        hint = "check the indentation and brackets on this line and the one above"
+        if "\\t" in problem or "\t" in problem:
+            hint = "indent with spaces, not tabs"
+        elif "another document" in problem:
+            hint = "a spec is one YAML document: remove this '---' and what follows, or put it in its own file"
+        # PyYAML words some errors as context then problem ("expected a single document … but found another")
+        parts = (err.context, problem) if problem.startswith("but ") else (problem, err.context)
+        raise SpecError(f"invalid YAML: {' '.join(p for p in parts if p)}", path=source,
+                        line=mark.line + 1 if mark else None, hint=hint) from None
+    except yaml.YAMLError as err:
+        raise SpecError(f"invalid YAML: {err}", path=source) from None
+    except RecursionError:
+        raise SpecError("lists or blocks are nested too deeply", path=source,
+                        hint="a spec nests a few levels at most; check the brackets") from None
+
+
+def _nodes(loader, source: str | None) -> Node | None:
+    """The single document ``loader`` reads, as Nodes (None when the text holds none)."""
+    try:
+        root = loader.get_single_node()
+        return None if root is None else _convert(root, loader, {}, set(), source)
+    finally:
+        loader.dispose()
+
+
+def _convert(node, loader, memo: dict, active: set, source) -> Node:
+    """YAML node → Node. Aliases share one converted value; a recursive alias is refused."""
+    if id(node) in memo:
+        return memo[id(node)]
+    line = node.start_mark.line + 1
+    if id(node) in active:
+        raise SpecError("a YAML alias refers to itself", path=source, line=line, hint="remove the recursive *alias")
+    if isinstance(node, yaml.ScalarNode):
+        out = Node(loader.construct_object(node), line, style=node.style or None)   # libyaml: '' for plain
+    elif isinstance(node, yaml.SequenceNode):
+        active.add(id(node))
+        out = Node([_convert(child, loader, memo, active, source) for child in node.value], line)
+        active.discard(id(node))
+    else:
+        own = {id(k) for k, _ in node.value}
+        loader.flatten_mapping(node)   # applies YAML merge keys (<<: *defaults): merged pairs come first
+        active.add(id(node))
+        values, lines, merged = {}, {}, set()
+        for key_node, value_node in node.value:
+            key_line = key_node.start_mark.line + 1
+            if not isinstance(key_node, yaml.ScalarNode):
+                raise SpecError("a key must be a plain word", path=source, line=key_line,
+                                hint="write keys like `name:` or `walls:`")
+            key = str(key_node.value)
+            if id(key_node) not in own:
+                merged.add(key)
+            elif key in values and key not in merged:
+                raise SpecError(f"key '{key}' is given twice in the same block", path=source, line=key_line,
+                                hint=f"keep one; the first is on line {lines[key]}")
+            else:
+                merged.discard(key)   # the block's own value overrides the merged one; a third is a duplicate
+            values[key] = _convert(value_node, loader, memo, active, source)
+            lines[key] = key_line
+        active.discard(id(node))
+        out = Node(values, line, lines)
+    memo[id(node)] = out
+    return out
