@@ -60,3 +60,11 @@ def read_capped(path: str | Path, limit: int = MAX_INPUT_BYTES, error: Type[Worl
         return b"".join(chunks)
     finally:
         os.close(fd)
+
+
+def read_text_capped(path: str | Path, limit: int = MAX_SPEC_BYTES, error: Type[WorldgenError] = WorldFileError,
+                     what: str = "file") -> str:
+    """:func:`read_capped` decoded as UTF-8 with newlines made ``\\n`` (as ``Path.read_text`` reads them);
+    UnicodeDecodeError is left to the caller."""
+    text = read_capped(path, limit, error, what).decode("utf-8")
+    return text.replace("\r\n", "\n").replace("\r", "\n")

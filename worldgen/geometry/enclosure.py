@@ -33,6 +33,7 @@ WIDTH_TOLERANCE = 0.005  # the critical radius is bisected to half this
 MAX_GAP_ROUNDS = 6     # gaps listed at most (then: "there may be more")
 CIRCLE_SEGMENTS = 16   # per quarter circle, for cylinders and spheres
 PRISM_SIDES = 48       # tilted cylinders are sliced as prisms with this many sides
+FAST_BOXES = 200       # scenes with more shapes slice upright boxes as their rectangles (the same regions)
 
 
 @dataclass(frozen=True)
@@ -118,10 +119,10 @@ def _convex_section(points, z: float):
     return hull if hull.geom_type == "Polygon" and hull.area > 0 else None
 
 
-def _box_section(shape: Shape, z: float):
-    """A box's section: when one of its axes stands upright (most walls), its rectangle between bottom and top;
-    else the general convex section."""
-    upright = _upright_box(shape)
+def _box_section(shape: Shape, z: float, fast: bool = False):
+    """A box's section: the convex section; or, ``fast``, when one of its axes stands upright (most walls), its
+    rectangle between bottom and top (the same region, without the general computation)."""
+    upright = _upright_box(shape) if fast else None
     if upright is not None and upright[0] < z < upright[1]:
         return upright[2]
     if upright is not None and not upright[0] <= z <= upright[1]:
@@ -191,10 +192,10 @@ def _mesh_section(shape: Shape, z: float):
     return mesh_footprint(_to_world(shape, shape.vertices), shape.vertices, shape.faces, z, SLIVER)
 
 
-def section(shape: Shape, z: float):
+def section(shape: Shape, z: float, fast: bool = False):
     """The 2-D footprint (shapely geometry, world x/y) of ``shape`` cut by the plane at height ``z``, or None."""
     if shape.kind == "box" and shape.size is not None:
-        return _box_section(shape, z)
+        return _box_section(shape, z, fast)
     if shape.kind == "cylinder" and shape.radius and shape.length:
         return _cylinder_section(shape, z)
     if shape.kind == "sphere" and shape.radius:
@@ -207,8 +208,10 @@ def section(shape: Shape, z: float):
 def footprints(scene: Scene, z: float) -> list[Footprint]:
     """Every shape of ``scene`` cut at height ``z``, in scene order (shapes the plane misses are left out)."""
     out = []
-    for shape in scene.obstacles():
-        geometry, note = _mesh_section(shape, z) if shape.kind == "mesh" else (section(shape, z), None)
+    shapes = scene.obstacles()
+    fast = len(shapes) > FAST_BOXES
+    for shape in shapes:
+        geometry, note = _mesh_section(shape, z) if shape.kind == "mesh" else (section(shape, z, fast), None)
         if geometry is not None and not geometry.is_empty:
             out.append(Footprint(shape.label, geometry, note))
     return out
@@ -223,8 +226,10 @@ def footprints_between(scene: Scene, z0: float, z1: float, steps: int = 4, also:
 
     heights = sorted({z0 + (z1 - z0) * i / (steps - 1) for i in range(steps)} | set(also))
     out = []
-    for shape in scene.obstacles():
-        upright = _upright_box(shape) if shape.kind == "box" and shape.size is not None else None
+    shapes = scene.obstacles()
+    fast = len(shapes) > FAST_BOXES
+    for shape in shapes:
+        upright = _upright_box(shape) if fast and shape.kind == "box" and shape.size is not None else None
         if upright is not None and any(upright[0] < z < upright[1] for z in heights):
             out.append(Footprint(shape.label, upright[2]))   # its sections at the other heights: the same, or none
             continue
@@ -277,8 +282,10 @@ def obstacle_union(prints: list[Footprint]):
     """The footprints united and grown by :data:`SLIVER` (empty geometry when there are none)."""
     import shapely
 
-    from .growth import unite
+    from .growth import SMALL, unite
 
+    if len(prints) <= SMALL:   # few: as GEOS does it (the same region; vertex for vertex as before)
+        return shapely.union_all([p.geometry for p in prints]).buffer(SLIVER, quad_segs=2)
     return unite(shapely.buffer([p.geometry for p in prints], SLIVER, quad_segs=2))
 
 
@@ -319,12 +326,14 @@ class _Space:
         self._cache: dict[float, tuple] = {}
 
     def grown(self, r: float):
-        """The obstacles (plugs included) grown by ``r``: the unplugged ones are grown once per radius for
-        every plugged space, the plugs added to that."""
+        """The obstacles (plugs included) grown by ``r``. Many obstacles: the unplugged ones are grown once per
+        radius for every plugged space, the plugs added to that. Few: GEOS's buffer of them all."""
         import shapely
 
-        from .growth import grown, unite
+        from .growth import SMALL, grown, unite
 
+        if len(shapely.get_parts(self.base)) <= SMALL:
+            return self.obstacles.buffer(r, quad_segs=8) if r > 0 else self.obstacles
         key = round(r, 6)
         if key not in self._grown:
             self._grown[key] = grown(self.base, r, quad_segs=8)
@@ -367,9 +376,11 @@ class _Space:
     def plugged(self, plug) -> _Space:
         import shapely
 
-        from .growth import unite
+        from .growth import SMALL, unite
 
-        return _Space(unite([*shapely.get_parts(self.obstacles), plug]), self.frame, (*self.plugs, plug), self)
+        parts = shapely.get_parts(self.obstacles)
+        united = shapely.union_all([self.obstacles, plug]) if len(parts) <= SMALL else unite([*parts, plug])
+        return _Space(united, self.frame, (*self.plugs, plug), self)
 
 
 @dataclass

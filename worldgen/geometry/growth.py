@@ -12,6 +12,7 @@ Plain numbers in, plain numbers out: numpy and shapely, imported when first used
 
 from __future__ import annotations
 
+SMALL = 200   # up to this many parts, GEOS's own union and buffer are fast enough: used as they are
 DENSE = 2.0   # parts whose envelopes add up to this many times their common envelope are united in one go
 
 
@@ -63,6 +64,6 @@ def grown(geometry, r: float, quad_segs: int):
     if r <= 0 or geometry.is_empty:
         return geometry
     parts = shapely.get_parts(geometry)
-    if len(parts) == 1:
+    if len(parts) <= SMALL:
         return geometry.buffer(r, quad_segs=quad_segs)
     return unite(shapely.buffer(parts, r, quad_segs=quad_segs))

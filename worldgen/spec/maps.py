@@ -25,6 +25,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..core.errors import SpecError
+from ..core.inputs import MAX_SPEC_BYTES, read_text_capped
 from . import values
 from .grid import plan_grid
 from .messages import describe, describe_sized, did_you_mean, metres, suggest_name
@@ -157,7 +158,7 @@ def read_map_yaml(src: Source, root: Node) -> MapFile:
 def load_map_yaml(path: Path) -> MapFile:
     """Read a map_server YAML file (for ``map: FILE``); SpecError names the file and line of a problem."""
     try:
-        text = path.read_text(encoding="utf-8")
+        text = read_text_capped(path, MAX_SPEC_BYTES, SpecError, "map file")
     except UnicodeDecodeError as err:
         raise SpecError(f"is not UTF-8 text ({err.reason} at byte {err.start})", path=path,
                         hint="map: names the map's YAML file (map.yaml), not its image") from None
