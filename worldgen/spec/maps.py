@@ -239,7 +239,8 @@ def pieces(occupied) -> int:
 
 
 def without_specks(occupied, smallest: int = SPECK_PIXELS):
-    """``occupied`` without its specks: blobs of fewer than ``smallest`` pixels (8-connected)."""
+    """``occupied`` without its specks (blobs of fewer than ``smallest`` pixels, 8-connected), and how many
+    blobs are left."""
     import numpy as np
 
     from ..core.labels import connected_labels
@@ -260,24 +261,26 @@ def without_specks(occupied, smallest: int = SPECK_PIXELS):
     keep = np.zeros_like(occupied)
     big = sizes[label] >= smallest
     keep[rows[big], columns[big]] = True
-    return keep
+    return keep, int((sizes >= smallest).sum())
+
+
+def _too_many(count: int, fail, how: str = "") -> SpecError:
+    return fail(f"would make {how}{count:,} walls and posts even without its specks (blobs under {SPECK_PIXELS} "
+                f"pixels), more than the {MAX_MAP_PIECES:,} worldgen builds from one map",
+                "clean the noise off the map in an image editor, or crop it to the building (see Limits in the "
+                "README)")
 
 
 def _bounded(occupied, fail):
-    """``occupied``, or without specks when it would make more than :data:`MAX_MAP_PIECES` walls and posts;
-    ``fail`` (SpecError) when even that is too many."""
-    count = pieces(occupied)
-    if count <= MAX_MAP_PIECES:
+    """``occupied``, or without specks when it could make more than :data:`MAX_MAP_PIECES` walls and posts;
+    ``fail`` (SpecError) when even its blobs are more than that (each needs one at least)."""
+    if pieces(occupied) <= MAX_MAP_PIECES:
         return occupied
-    cleaned = without_specks(occupied)
-    left = pieces(cleaned)
-    if left > MAX_MAP_PIECES:
-        raise fail(f"would make {left:,} walls and posts even without its specks (blobs under {SPECK_PIXELS} pixels), "
-                   f"more than the {MAX_MAP_PIECES:,} worldgen builds from one map",
-                   "clean the noise off the map in an image editor, or crop it to the building (see Limits in the "
-                   "README)")
+    cleaned, blobs = without_specks(occupied)
+    if blobs > MAX_MAP_PIECES:
+        raise _too_many(blobs, fail, "at least ")
     if not cleaned.any():
-        raise fail(f"holds nothing but specks (blobs under {SPECK_PIXELS} pixels) once too many to build",
+        raise fail(f"holds nothing but specks (blobs under {SPECK_PIXELS} pixels), too many of them to build",
                    "clean the noise off the map in an image editor")
     return cleaned
 
@@ -293,6 +296,9 @@ def map_parts(m: MapFile, base: WallStyle, line: int | None) -> tuple[list[Segme
                         f"of {metres(res)} m from ({metres(x0)}, {metres(y0)}))", path=m.path, line=m.line,
                         hint="check the resolution (metres per pixel) and the origin")
     plan = plan_grid(grid.rows, res, grid.origin, source=str(m.path))
+    if len(plan.walls) + len(plan.posts) > MAX_MAP_PIECES:
+        raise _too_many(len(plan.walls) + len(plan.posts), lambda message, hint: SpecError(
+            f"the map's image {m.image.name} {message}", path=m.path, line=m.line, hint=hint))
     style = WallStyle(thickness=res, height=base.height, material=base.material)
     segments = [Segment(start=a, end=b, style=style, line=line) for a, b in plan.walls]
     posts = [Obstacle(shape="box", at=at, size=(res, res, base.height), material=base.material,
