@@ -1,6 +1,7 @@
 """Hostile and huge inputs against worldgen's limits: each case's wall time and peak memory, against its bound.
 
-Run: ``python benchmarks/bench_limits.py [CASE …] [--timeout S]`` (``--list`` names the cases). Every case is
+Run: ``python benchmarks/bench_limits.py [CASE …] [--timeout S]`` (``--list`` names the cases; ``WORLDGEN_ROOT=DIR``
+measures the worldgen checked out in DIR instead of this one). Every case is
 generated in a temporary folder (removed afterwards), run as ``python -m worldgen …`` in a child process with a
 time limit of its own, and measured there: wall time, and peak memory from ``getrusage(RUSAGE_CHILDREN)`` (the
 child's maximum resident set). A refusal must take under 2 s and 300 MB; the big inputs that are handled have
@@ -20,7 +21,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable, List, Tuple
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(os.environ.get("WORLDGEN_ROOT") or Path(__file__).resolve().parent.parent)   # the worldgen to measure
 REFUSAL = (2.0, 300.0)   # seconds, MB
 
 

@@ -331,3 +331,13 @@ def test_without_specks_keeps_blobs_of_five():
 @pytest.mark.skipif(sys.platform != "linux", reason="FIFOs and /dev/zero as Linux has them")
 def test_dev_zero_as_a_world_is_refused():
     one_line_refusal(CliRunner().invoke(main, ["validate", "--skip-sim", "/dev/zero"]), "not a regular file")
+
+
+def test_a_launch_include_fanout_is_refused(tmp_path):
+    for level in range(6):
+        inner = "".join(f"<include file='{tmp_path}/l{level + 1}.launch'/>" for _ in range(5)) if level < 5 else ""
+        (tmp_path / f"l{level}.launch").write_text(f"<launch>{inner}</launch>")
+    start = time.perf_counter()
+    result = CliRunner().invoke(main, ["validate", "--skip-sim", str(tmp_path / "l0.launch")])
+    assert result.exit_code == 1 and "more than 1000 launch files" in result.stdout
+    assert time.perf_counter() - start < 5
