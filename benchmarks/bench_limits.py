@@ -65,6 +65,20 @@ def boxes_beside_room(count: int) -> str:
     return world(room_walls(1.5) + grid_body(count, corner=3.0))
 
 
+def room_with_door_and_clutter(count: int) -> str:
+    """A 20 × 20 m room with a 1 m door and a partition, ``count`` 5 cm posts on a grid inside: the gap search
+    runs among thousands of obstacles."""
+    t, half, door = 0.1, 10.0, 1.0
+    seg = (2 * half - door) / 2
+    walls = (box_model("s", 0, -half, (2 * half + t, t, 1)) + box_model("n", 0, half, (2 * half + t, t, 1))
+             + box_model("w", -half, 0, (t, 2 * half + t, 1)) + box_model("e1", half, -half + seg / 2, (t, seg, 1))
+             + box_model("e2", half, half - seg / 2, (t, seg, 1)) + box_model("p", half - 3, -2, (0.1, 4, 1)))
+    side = int(count ** 0.5 + 0.999)
+    pitch = 18 / side
+    return world(walls + "".join(box_model(f"b{i}", -9 + (i % side) * pitch, -9 + (i // side) * pitch,
+                                           (0.05, 0.05, 1)) for i in range(count)))
+
+
 def include_fanout(tmp: Path, fan: int, depth: int) -> Path:
     """Models m0 … m<depth>: each includes ``fan`` copies of the next; the world includes ``fan`` of m0."""
     models = tmp / "models"
@@ -203,6 +217,8 @@ CASES = [
          (10.0, 1000.0)),
     Case("boxes-10000-grid", lambda t: _validate(_write(t, "g.world", grid_of_boxes(10000)), "--spawn", "-1,-1"),
          (30.0, 1000.0)),
+    Case("door-clutter-10000", lambda t: _validate(_write(t, "d.world", room_with_door_and_clutter(10000)),
+                                                   "--spawn", "0.1,0.1"), (30.0, 1000.0)),
     Case("models-10000", lambda t: _validate(_write(t, "m.world", boxes_beside_room(10000))),
          (10.0, 1000.0)),
     Case("models-100000", lambda t: _validate(_write(t, "m.world", boxes_beside_room(100000))),

@@ -341,3 +341,15 @@ def test_a_launch_include_fanout_is_refused(tmp_path):
     result = CliRunner().invoke(main, ["validate", "--skip-sim", str(tmp_path / "l0.launch")])
     assert result.exit_code == 1 and "more than 1000 launch files" in result.stdout
     assert time.perf_counter() - start < 5
+
+
+def test_past_many_shapes_the_gap_search_lists_one_way_out(monkeypatch):
+    from worldgen.sdf.reader import read_world_text
+
+    walls = room().replace("<pose>1.5 0 ", "<pose>1.5 0.9 ").replace("0.1 3.1 1.0</size>", "0.1 1.2 1.0</size>", 1)
+    posts = "".join(box(f"p{i}", -1.2 + 0.3 * i, -1.2, 0.05, 0.05) for i in range(6))
+    scene = read_world_text(world(walls + posts))
+    monkeypatch.setattr(enclosure, "MANY_SHAPES", 5)
+    found = enclosure.enclosure(scene, (0.0, 0.0), 0.2)
+    assert len(found.gaps) == 1 and found.more
+    assert any("more than 5: only the widest way out" in n for n in found.notes)

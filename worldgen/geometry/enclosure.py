@@ -31,6 +31,7 @@ MARGIN = 1.0           # the "outside" frame lies this far beyond the scene and 
 MAX_GAP = 8.0          # openings wider than this are not gaps any more: the walls do not surround the spawn
 WIDTH_TOLERANCE = 0.005  # the critical radius is bisected to half this
 MAX_GAP_ROUNDS = 6     # gaps listed at most (then: "there may be more")
+MANY_SHAPES = 2000     # past this many footprints, one gap is listed (then: "there may be more")
 CIRCLE_SEGMENTS = 16   # per quarter circle, for cylinders and spheres
 PRISM_SIDES = 48       # tilted cylinders are sliced as prisms with this many sides
 FAST_BOXES = 200       # scenes with more shapes slice upright boxes as their rectangles (the same regions)
@@ -82,7 +83,7 @@ class Enclosure:
     nearest: float | None = None
     rooms: tuple[tuple[float, float, float, float], ...] = ()
     more: bool = False      # the search stopped after MAX_GAP_ROUNDS gaps: there may be more
-    notes: tuple[str, ...] = ()   # footprints simplified on the way ("LABEL: why"), see mesh_section
+    notes: tuple[str, ...] = ()   # what was simplified on the way (a tangled mesh, a search cut short), why
 
 
 # --------------------------------------------------------------------------------------------------- slicing
@@ -482,7 +483,8 @@ def _beyond(space: _Space, gap: Gap, outward, step: float = 0.05):
 MAX_DEPTH = 3   # how far the search follows a way out into further enclosed regions
 
 
-def _way_out(space: _Space, point, prints: list[Footprint], depth: int = 0) -> _Way | None:
+def _way_out(space: _Space, point, prints: list[Footprint], depth: int = 0, max_depth: int = MAX_DEPTH
+             ) -> _Way | None:
     """The widest way out from ``point``, or None when nothing encloses it at any scale up to MAX_GAP.
 
     The narrowest cut between the point and the outside may lie inside the building (beside a free-standing
@@ -495,8 +497,8 @@ def _way_out(space: _Space, point, prints: list[Footprint], depth: int = 0) -> _
     way = _neck(space, point, *bounds, prints)
     if way is None:
         return None
-    if depth < MAX_DEPTH and way.beyond is not None:
-        further = _way_out(space.plugged(way.plug), way.beyond, prints, depth + 1)
+    if depth < max_depth and way.beyond is not None:
+        further = _way_out(space.plugged(way.plug), way.beyond, prints, depth + 1, max_depth)
         if further is not None and further.real:
             return further
     return way
@@ -554,8 +556,9 @@ def analyse(prints: list[Footprint], spawn: tuple[float, float], height: float) 
     rooms = _closed_regions(space.at(0.0)[0], frame, point)
     gaps: list[Gap] = []
     more = True
-    for _ in range(MAX_GAP_ROUNDS):   # name the widest way out, close it, look again
-        way = _way_out(space, spawn, prints)
+    many = len(prints) > MANY_SHAPES   # then only the widest way out, followed one region further
+    for _ in range(1 if many else MAX_GAP_ROUNDS):   # name the widest way out, close it, look again
+        way = _way_out(space, spawn, prints, max_depth=1 if many else MAX_DEPTH)
         if way is None or any(math.dist(way.gap.centre, g.centre) < 0.01 for g in gaps):
             more = False
             break
@@ -581,5 +584,8 @@ def enclosure(scene: Scene, spawn: tuple[float, float], height: float) -> Enclos
     from dataclasses import replace
 
     prints = footprints(scene, height)
-    notes = tuple(f"{p.label}: {p.note}" for p in prints if p.note)
+    notes = tuple(f"mesh {p.label}: {p.note}" for p in prints if p.note)
+    if len(prints) > MANY_SHAPES:
+        notes += (f"{len(prints)} shapes stand at the slicing height, more than {MANY_SHAPES}: only the widest way "
+                  f"out is searched (not up to {MAX_GAP_ROUNDS}), to keep the check fast",)
     return replace(analyse(prints, spawn, height), notes=notes)
