@@ -231,6 +231,8 @@ CASES = [
          (10.0, 1000.0)),
     Case("map-9000-square", lambda t: ["build", str(speckled_map(t, 9000, 0.0)), "-o", str(t / "o.world")],
          REFUSAL, (2,)),
+    Case("grid-checker-1400", lambda t: ["build", str(_write(t, "c.txt", "\n".join(
+        ("#." if r % 2 == 0 else ".#") * 700 for r in range(1400)) + "\n")), "-o", str(t / "o")], REFUSAL, (2,)),
     Case("yaml-merge-bomb", lambda t: ["build", str(_write(t, "m.yaml", MERGE_BOMB)), "-o", str(t / "o.world")],
          REFUSAL, (2,)),
     Case("yaml-alias-bomb", lambda t: ["build", str(_write(t, "a.yaml", ALIAS_BOMB)), "-o", str(t / "o.world")],

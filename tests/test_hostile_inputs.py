@@ -84,7 +84,9 @@ POSES = ["0 0 0 0 0 0", "1 2 0.5 0 0 1.57", "nan 0 0 0 0 0", "1e300 0 0 0 0 0", 
          "0 0 0 1e9 1e9 1e9", "0 0 0.5 0 0 0 1"]
 URIS = ["model://nope", "model://ground_plane", "model://sun", "file:///dev/zero", "model://../../etc",
         "https://fuel.gazebosim.org/x", "", "package://nope/x", "model://a b"]
-MESHES = ["/dev/zero", "nope.stl", "file:///etc/passwd", "", "model://x/meshes/y.dae"]
+MESHES = ["/dev/zero", "nope.stl", "file:///etc/passwd", "", "model://x/meshes/y.dae", "m.stl", "m.obj"]
+MESH_FILES = [b"", b"solid x\nendsolid x\n", b"\0" * 84, b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n# caf\xe9\n",
+              b"\0" * 80 + b"\xff\xff\xff\x7f", b"v nan 0 0\nv 1e308 0 0\nv 0 1 0\nf 1 2 3\nf 1 1 1\n"]
 
 
 @st.composite
@@ -128,9 +130,12 @@ world_text = st.builds(
 
 
 @SETTINGS
-@given(text=world_text, spawn=st.sampled_from([[], ["--spawn", "0,0"], ["--spawn", "1e6,-1e6,3"]]))
-def test_any_world_gets_a_verdict_or_one_line(tmp_path_factory, text, spawn):
+@given(text=world_text, spawn=st.sampled_from([[], ["--spawn", "0,0"], ["--spawn", "1e6,-1e6,3"]]),
+       stl=st.sampled_from(MESH_FILES), obj=st.sampled_from(MESH_FILES))
+def test_any_world_gets_a_verdict_or_one_line(tmp_path_factory, text, spawn, stl, obj):
     folder = tmp_path_factory.mktemp("world")
+    (folder / "m.stl").write_bytes(stl)
+    (folder / "m.obj").write_bytes(obj)
     path = folder / "w.world"
     path.write_bytes(text.encode("utf-8", "surrogatepass"))
     junit = folder / "report.xml"

@@ -353,3 +353,15 @@ def test_past_many_shapes_the_gap_search_lists_one_way_out(monkeypatch):
     found = enclosure.enclosure(scene, (0.0, 0.0), 0.2)
     assert len(found.gaps) == 1 and found.more
     assert any("more than 5: only the widest way out" in n for n in found.notes)
+
+
+def test_a_grid_of_lone_cells_is_refused(tmp_path):
+    from worldgen.spec import grid
+
+    path = tmp_path / "checker.txt"
+    path.write_text("\n".join("#." * 170 if r % 2 == 0 else ".#" * 170 for r in range(340)) + "\n")  # 57 800 posts
+    assert grid.MAX_PIECES == 50_000
+    start = time.perf_counter()
+    one_line_refusal(CliRunner().invoke(main, ["build", str(path), "-o", str(tmp_path / "out")]),
+                     "57,800 walls and posts, more than the 50,000")
+    assert time.perf_counter() - start < 5 and not (tmp_path / "out").exists()

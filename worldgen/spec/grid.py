@@ -29,6 +29,8 @@ FREE = frozenset(". ")
 ROBOT_HEADINGS = {"R": 0.0, ">": 0.0, "^": math.pi / 2, "<": math.pi, "v": -math.pi / 2}
 POST_PREFIX = "grid_post_"   # a lone cell's post is the obstacle named grid_post_ROW_COLUMN (from 1)
 LEGEND = "use # for a wall, . or space for free floor, R or > ^ < v for the robot and its heading"
+MAX_CELLS = 64_000_000   # cells of one grid (as many as a map may have pixels)
+MAX_PIECES = 50_000      # walls and posts one grid may become
 
 
 @dataclass(frozen=True)
@@ -53,6 +55,9 @@ def plan_grid(rows: Sequence[str], cell: float, origin: Point = (0.0, 0.0), *, s
         return row_lines[r] if row_lines is not None and r < len(row_lines) else None
 
     width = max((len(row) for row in rows), default=0)
+    if width * len(rows) > MAX_CELLS:
+        raise SpecError(f"the grid has {width} × {len(rows)} cells, more than the {MAX_CELLS:,} worldgen reads",
+                        path=source, line=line_of(0), hint="use a coarser cell (see Limits in the README)")
     grid = [row.ljust(width) for row in rows]
     height = len(grid)
     ox, oy = origin
@@ -98,6 +103,10 @@ def plan_grid(rows: Sequence[str], cell: float, origin: Point = (0.0, 0.0), *, s
 
     posts = tuple((r, c, centre(r, c)) for r in range(height) for c in range(width)
                   if is_wall[r][c] and not _has_wall_neighbour(is_wall, r, c))
+    if len(walls) + len(posts) > MAX_PIECES:
+        raise SpecError(f"the grid makes {len(walls) + len(posts):,} walls and posts, more than the {MAX_PIECES:,} "
+                        "worldgen builds from one grid", path=source, line=line_of(0),
+                        hint="join the lone # cells into walls, or use a coarser cell (see Limits in the README)")
     return GridPlan(tuple(walls), posts, robot, height, width)
 
 
