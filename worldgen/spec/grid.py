@@ -60,6 +60,7 @@ def plan_grid(rows: Sequence[str], cell: float, origin: Point = (0.0, 0.0), *, s
                         path=source, line=line_of(0), hint="use a coarser cell (see Limits in the README)")
     grid = [row.ljust(width) for row in rows]
     height = len(grid)
+    _refuse_lone_cells(grid, source, line_of(0))
     ox, oy = origin
 
     def centre(r: int, c: int) -> Point:
@@ -108,6 +109,21 @@ def plan_grid(rows: Sequence[str], cell: float, origin: Point = (0.0, 0.0), *, s
                         "worldgen builds from one grid", path=source, line=line_of(0),
                         hint="join the lone # cells into walls, or use a coarser cell (see Limits in the README)")
     return GridPlan(tuple(walls), posts, robot, height, width)
+
+
+def _refuse_lone_cells(grid: Sequence[str], source: str | None, line: int | None) -> None:
+    """SpecError at once when the lone ``#`` cells alone (each a post) are more than MAX_PIECES."""
+    if len(grid) * len(grid[0] if grid else "") <= MAX_PIECES:
+        return
+    import numpy as np
+
+    cells = np.array([np.frombuffer(row.encode("utf-32-le"), dtype=np.uint32) for row in grid]) == ord(WALL)
+    padded = np.pad(cells, 1)
+    lone = int((cells & ~(padded[:-2, 1:-1] | padded[2:, 1:-1] | padded[1:-1, :-2] | padded[1:-1, 2:])).sum())
+    if lone > MAX_PIECES:
+        raise SpecError(f"the grid makes {lone:,} posts (lone # cells) at least, more than the {MAX_PIECES:,} walls "
+                        "and posts worldgen builds from one grid", path=source, line=line,
+                        hint="join the lone # cells into walls, or use a coarser cell (see Limits in the README)")
 
 
 def _runs(cells: Sequence[bool]) -> list[tuple[int, int]]:
