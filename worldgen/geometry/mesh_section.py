@@ -17,7 +17,8 @@ def mesh_section_segments(vertices, faces, z: float):
     """The segments (K × 2 × 2, x/y) where a triangle mesh (world vertices) crosses the plane at height ``z``."""
     import numpy as np
 
-    v, f = merged_mesh(vertices, faces)
+    v = np.round(np.asarray(vertices, dtype=float).reshape(-1, 3), 9)
+    f = np.asarray(faces, dtype=np.int64).reshape(-1, 3)
     if len(v) == 0 or len(f) == 0:
         return np.zeros((0, 2, 2))
     d = v[:, 2] - z
@@ -26,6 +27,13 @@ def mesh_section_segments(vertices, faces, z: float):
     f = f[above.any(axis=1) & ~above.all(axis=1)]
     if len(f) == 0:
         return np.zeros((0, 2, 2))
+    # Only the crossing triangles' vertices are merged: np.unique sorts them by their coordinates as it would
+    # sort them all, so every edge is taken in the same direction as when the whole mesh is merged.
+    used, inverse = np.unique(f, return_inverse=True)
+    v, merged = np.unique(v[used], axis=0, return_inverse=True)
+    f = merged.reshape(-1)[inverse.reshape(-1)].reshape(-1, 3)
+    d = v[:, 2] - z
+    d[d == 0] = 1e-12
     ring = np.roll(f, -1, axis=1)               # the three edges of each crossing triangle, each edge always
     a, b = np.minimum(f, ring), np.maximum(f, ring)   # taken in the same direction so neighbours agree exactly
     da, db = d[a], d[b]
@@ -117,10 +125,20 @@ def _closed_surface(faces, vertices) -> bool:
     so that its sections bound solid material; a loose sheet only blocks along its surface."""
     import numpy as np
 
+    key = (id(faces), id(vertices))
+    if key in _CLOSED and _CLOSED[key][0] is faces and _CLOSED[key][1] is vertices:
+        return _CLOSED[key][2]
     _, f = merged_mesh(vertices, faces)
     edges = np.sort(np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]]), axis=1)
     _, counts = np.unique(edges, axis=0, return_counts=True)
-    return bool(len(counts)) and bool((counts == 2).all())
+    closed = bool(len(counts)) and bool((counts == 2).all())
+    if len(_CLOSED) >= 16:
+        _CLOSED.clear()
+    _CLOSED[key] = (faces, vertices, closed)   # the arrays kept, so that their ids stay theirs
+    return closed
+
+
+_CLOSED: dict = {}   # (id(faces), id(vertices)) -> (faces, vertices, closed): one mesh is sliced at several heights
 
 
 def _probe(polygon) -> tuple[float, float]:
