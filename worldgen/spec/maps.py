@@ -233,9 +233,15 @@ def pieces(occupied) -> int:
             np.nonzero(np.diff(padded.astype(np.int8), axis=1) == -1)
         return int(((ends[1] - starts[1]) >= 2).sum())
 
+    return runs(occupied) + runs(occupied.T) + lone_pixels(occupied)
+
+
+def lone_pixels(occupied) -> int:
+    """How many occupied pixels have no occupied neighbour left, right, above or below: each becomes a post."""
+    import numpy as np
+
     p = np.pad(occupied, 1)
-    lone = occupied & ~(p[:-2, 1:-1] | p[2:, 1:-1] | p[1:-1, :-2] | p[1:-1, 2:])
-    return runs(occupied) + runs(occupied.T) + int(lone.sum())
+    return int((occupied & ~(p[:-2, 1:-1] | p[2:, 1:-1] | p[1:-1, :-2] | p[1:-1, 2:])).sum())
 
 
 def without_specks(occupied, smallest: int = SPECK_PIXELS):
@@ -273,12 +279,13 @@ def _too_many(count: int, fail, how: str = "") -> SpecError:
 
 def _bounded(occupied, fail):
     """``occupied``, or without specks when it could make more than :data:`MAX_MAP_PIECES` walls and posts;
-    ``fail`` (SpecError) when even its blobs are more than that (each needs one at least)."""
+    ``fail`` (SpecError) when even its blobs, or its lone pixels, are more than that (each needs one at least)."""
     if pieces(occupied) <= MAX_MAP_PIECES:
         return occupied
     cleaned, blobs = without_specks(occupied)
-    if blobs > MAX_MAP_PIECES:
-        raise _too_many(blobs, fail, "at least ")
+    least = max(blobs, lone_pixels(cleaned))
+    if least > MAX_MAP_PIECES:
+        raise _too_many(least, fail, "at least ")
     if not cleaned.any():
         raise fail(f"holds nothing but specks (blobs under {SPECK_PIXELS} pixels), too many of them to build",
                    "clean the noise off the map in an image editor")
@@ -295,7 +302,7 @@ def map_parts(m: MapFile, base: WallStyle, line: int | None) -> tuple[list[Segme
         raise SpecError(f"the map's walls reach farther than {LIMIT:g} m from the origin ({columns} × {rows} pixels "
                         f"of {metres(res)} m from ({metres(x0)}, {metres(y0)}))", path=m.path, line=m.line,
                         hint="check the resolution (metres per pixel) and the origin")
-    plan = plan_grid(grid.rows, res, grid.origin, source=str(m.path))
+    plan = plan_grid(grid.rows, res, grid.origin, source=str(m.path), max_pieces=None)   # checked here, below
     if len(plan.walls) + len(plan.posts) > MAX_MAP_PIECES:
         raise _too_many(len(plan.walls) + len(plan.posts), lambda message, hint: SpecError(
             f"the map's image {m.image.name} {message}", path=m.path, line=m.line, hint=hint))
