@@ -58,7 +58,8 @@ class MeshCache:
         if not stat.S_ISREG(info.st_mode):
             return "is not a regular file (a pipe, device or socket)"
         if info.st_size > MAX_INPUT_BYTES:
-            return f"is larger than {MAX_INPUT_BYTES // 2 ** 20} MiB, the most worldgen reads (see Limits in the README)"
+            return (f"is larger than {MAX_INPUT_BYTES // 2 ** 20} MiB, the most worldgen reads (see Limits in the "
+                    "README)")
         try:
             mesh = trimesh.load(str(path), force="mesh")
         except Exception as err:  # trimesh raises many types for bad files; all mean "cannot use this mesh"
