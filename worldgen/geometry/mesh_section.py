@@ -126,8 +126,9 @@ def _closed_surface(faces, vertices) -> bool:
     import numpy as np
 
     key = (id(faces), id(vertices))
-    if key in _CLOSED and _CLOSED[key][0] is faces and _CLOSED[key][1] is vertices:
-        return _CLOSED[key][2]
+    known = _CLOSED.get(key)   # one lookup: validate's worker threads share the cache
+    if known is not None and known[0] is faces and known[1] is vertices:
+        return known[2]
     _, f = merged_mesh(vertices, faces)
     edges = np.sort(np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]]), axis=1)
     _, counts = np.unique(edges, axis=0, return_counts=True)
