@@ -191,6 +191,18 @@ def check_enclosed(scene: Scene, spawn: tuple[float, float, float], body: RobotB
                "enclosed_bounds": list(found.region_bounds) if found.region_bounds else None,
                "nearest_wall_m": found.nearest}
     where = f"spawn {_xy(spawn)}"
+    notes = [Finding("enclosed", "warning" if note.startswith("mesh ") else "info", note, where=where,
+                     fix="re-export the mesh as a closed surface (walls as solids, not loose triangles)"
+                     if note.startswith("mesh ") else None) for note in found.notes]
+    outcome = _enclosed_verdict(found, spawn, body, metrics, height, where, scene, ground)
+    outcome.findings[:0] = notes
+    return outcome
+
+
+def _enclosed_verdict(found, spawn, body: RobotBody, metrics: dict, height: float, where: str, scene: Scene,
+                      ground: float) -> Outcome:
+    from ..geometry.enclosure import MAX_GAP
+
     if found.inside is not None:
         metrics["spawn_inside"] = found.inside
         return Outcome([Finding(

@@ -30,6 +30,7 @@ from typing import Callable, Sequence
 from .checks import (GEOMETRIC_CHECKS, SDFORMAT_ABSENT, SIM_CHECKS, check_enclosed, check_parse,
                      check_spawn_clear, check_sdformat, floor_under, robot_body, sim_findings)
 from ..core.errors import InputError, SpecError, WorldFileError
+from ..core.inputs import check_regular
 from ..core.findings import Finding
 from .report import Result
 from ..spec.load import spec_beside
@@ -154,6 +155,7 @@ def _input_job(display: str, err: InputError) -> Job:
 def _plan_path(path: Path, display: str, options: Options, launch_info, notes) -> list[Job]:
     if not path.exists():
         raise InputError("no such file or folder", path=path, hint="check the path")
+    check_regular(path, InputError, "input")
     kind = input_kind(path)
     if kind == "package":
         return _package_jobs(path, options)

@@ -21,9 +21,12 @@ def parser() -> etree.XMLParser:
 def parse_file(path: str | Path):
     """The root element of the XML file ``path``, or None when it cannot be read or parsed (for files that are
     looked at in passing, such as package.xml and model.config)."""
+    from .errors import WorldgenError
+    from .inputs import read_capped
+
     try:
-        return etree.parse(str(path), parser()).getroot()
-    except (OSError, etree.XMLSyntaxError):
+        return etree.fromstring(read_capped(path), parser())
+    except (OSError, WorldgenError, etree.XMLSyntaxError, ValueError):
         return None
 
 

@@ -32,8 +32,10 @@ MAX_GAP = 8.0          # openings are searched up to this wide, or up to the wal
 MAX_SEARCH = 200.0     # … but never wider than this (m): beyond it the walls do not surround the spawn
 WIDTH_TOLERANCE = 0.005  # the critical radius is bisected to half this
 MAX_GAP_ROUNDS = 6     # gaps listed at most (then: "there may be more")
+MANY_SHAPES = 2000     # past this many footprints, one gap is listed (then: "there may be more")
 CIRCLE_SEGMENTS = 16   # per quarter circle, for cylinders and spheres
 PRISM_SIDES = 48       # tilted cylinders are sliced as prisms with this many sides
+FAST_BOXES = 200       # scenes with more shapes slice upright boxes as their rectangles (the same regions)
 
 
 @dataclass(frozen=True)
@@ -42,6 +44,7 @@ class Footprint:
 
     label: str
     geometry: object   # shapely geometry (Polygon / MultiPolygon)
+    note: str | None = None   # how the section was simplified (a mesh too tangled to cut exactly), if it was
 
 
 @dataclass(frozen=True)
@@ -81,6 +84,7 @@ class Enclosure:
     nearest: float | None = None
     rooms: tuple[tuple[float, float, float, float], ...] = ()
     more: bool = False      # the search stopped after MAX_GAP_ROUNDS gaps: there may be more
+    notes: tuple[str, ...] = ()   # what was simplified on the way (a tangled mesh, a search cut short), why
 
 
 # --------------------------------------------------------------------------------------------------- slicing
@@ -117,6 +121,41 @@ def _convex_section(points, z: float):
     return hull if hull.geom_type == "Polygon" and hull.area > 0 else None
 
 
+def _box_section(shape: Shape, z: float, fast: bool = False):
+    """A box's section: the convex section; or, ``fast``, when one of its axes stands upright (most walls), its
+    rectangle between bottom and top (the same region, without the general computation)."""
+    upright = _upright_box(shape) if fast else None
+    if upright is not None and upright[0] < z < upright[1]:
+        return upright[2]
+    if upright is not None and not upright[0] <= z <= upright[1]:
+        return None
+    return _convex_section(_to_world(shape, box_corners(shape.size)), z)
+
+
+def _upright_box(shape: Shape):
+    """(bottom, top, rectangle seen from above) of a box one of whose axes stands upright, else None."""
+    import shapely
+
+    from ..core.poses import quat_matrix
+
+    rotation = quat_matrix(*shape.orientation)
+    for k in range(3):
+        if abs(rotation[2, k]) > 1 - 1e-12:
+            break
+    else:
+        return None
+    i, j = (a for a in range(3) if a != k)
+    hi, hj, hk = shape.size[i] / 2, shape.size[j] / 2, shape.size[k] / 2
+    ux, uy, vx, vy = rotation[0, i] * hi, rotation[1, i] * hi, rotation[0, j] * hj, rotation[1, j] * hj
+    if ux * vy - uy * vx == 0:
+        return None
+    x, y, z = shape.position
+    ring = [(x + ux + vx, y + uy + vy), (x - ux + vx, y - uy + vy), (x - ux - vx, y - uy - vy),
+            (x + ux - vx, y + uy - vy)]
+    polygon = shapely.Polygon(ring if ux * vy - uy * vx > 0 else ring[::-1])
+    return z - hk, z + hk, polygon
+
+
 def _cylinder_section(shape: Shape, z: float):
     import numpy as np
     import shapely
@@ -146,113 +185,37 @@ def _sphere_section(shape: Shape, z: float):
     return shapely.Point(shape.position[:2]).buffer(math.sqrt(shape.radius ** 2 - d * d), quad_segs=CIRCLE_SEGMENTS)
 
 
-def mesh_section_segments(vertices, faces, z: float):
-    """The segments (K × 2 × 2, x/y) where a triangle mesh (world vertices) crosses the plane at height ``z``."""
-    import numpy as np
-
-    v, f = merged_mesh(vertices, faces)
-    if len(v) == 0 or len(f) == 0:
-        return np.zeros((0, 2, 2))
-    d = v[:, 2] - z
-    d[d == 0] = 1e-12            # a vertex exactly on the plane counts as just above it
-    above = d[f] > 0
-    f = f[above.any(axis=1) & ~above.all(axis=1)]
-    if len(f) == 0:
-        return np.zeros((0, 2, 2))
-    ring = np.roll(f, -1, axis=1)               # the three edges of each crossing triangle, each edge always
-    a, b = np.minimum(f, ring), np.maximum(f, ring)   # taken in the same direction so neighbours agree exactly
-    da, db = d[a], d[b]
-    crossing = (da > 0) != (db > 0)
-    t = np.where(crossing, da / np.where(crossing, da - db, 1.0), 0.0)
-    points = v[a][:, :, :2] + (v[b][:, :, :2] - v[a][:, :, :2]) * t[:, :, None]
-    order = np.argsort(~crossing, axis=1, kind="stable")[:, :2]   # the two crossing edges of each triangle
-    return np.take_along_axis(points, order[:, :, None], axis=1)
-
-
-def merged_mesh(vertices, faces):
-    """Vertices (rounded to 1 nm) made unique and faces renumbered, so that triangles sharing an edge share
-    its vertex indices even when the file repeated the vertices per triangle."""
-    import numpy as np
-
-    v = np.round(np.asarray(vertices, dtype=float).reshape(-1, 3), 9)
-    f = np.asarray(faces, dtype=np.int64).reshape(-1, 3)
-    if len(v) == 0:
-        return v, f
-    unique, index = np.unique(v, axis=0, return_inverse=True)
-    return unique, index.reshape(-1)[f]
-
-
-def _inside_by_parity(point, segments) -> bool:
-    """Even-odd rule against loose segments: works for closed sections even when the loops are not merged."""
-    x1, y1 = segments[:, 0, 0], segments[:, 0, 1]
-    x2, y2 = segments[:, 1, 0], segments[:, 1, 1]
-    px, py = point
-    straddle = (y1 > py) != (y2 > py)
-    with_y = (y2 - y1)
-    safe = with_y != 0
-    xs = x1 + (py - y1) * (x2 - x1) / (with_y + ~safe)
-    return bool((straddle & safe & (px < xs)).sum() % 2)
-
-
 def _mesh_section(shape: Shape, z: float):
-    """A mesh's section: the solid faces of the section (even-odd rule) plus every cut segment as a thin strip,
-    so that a mesh that is not closed still blocks where it has surface."""
-    import shapely
+    """A mesh's section (see :mod:`.mesh_section`), with a note when it had to be simplified."""
+    from .mesh_section import mesh_footprint
 
     if shape.vertices is None or shape.faces is None:
-        return None
-    world = _to_world(shape, shape.vertices)
-    if world[:, 2].min() > z or world[:, 2].max() < z:
-        return None
-    segments = mesh_section_segments(world, shape.faces, z)
-    if len(segments) == 0:
-        return None
-    lines = shapely.multilinestrings(segments)
-    strips = lines.buffer(SLIVER, quad_segs=1)
-    if not _closed_surface(shape.faces, shape.vertices):
-        return strips
-    noded = shapely.get_parts(shapely.union_all(lines))
-    faces = shapely.get_parts(shapely.polygonize(noded))
-    solid = [p for p in faces if p.area > 0 and _inside_by_parity(_probe(p), segments)]
-    return shapely.union_all([strips, *solid]) if solid else strips
+        return None, None
+    return mesh_footprint(_to_world(shape, shape.vertices), shape.vertices, shape.faces, z, SLIVER)
 
 
-def _closed_surface(faces, vertices) -> bool:
-    """True when every edge of the mesh is shared by exactly two triangles (after merging repeated vertices),
-    so that its sections bound solid material; a loose sheet only blocks along its surface."""
-    import numpy as np
-
-    _, f = merged_mesh(vertices, faces)
-    edges = np.sort(np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]]), axis=1)
-    _, counts = np.unique(edges, axis=0, return_counts=True)
-    return bool(len(counts)) and bool((counts == 2).all())
-
-
-def _probe(polygon) -> tuple[float, float]:
-    p = polygon.representative_point()
-    return p.x, p.y
-
-
-def section(shape: Shape, z: float):
+def section(shape: Shape, z: float, fast: bool = False):
     """The 2-D footprint (shapely geometry, world x/y) of ``shape`` cut by the plane at height ``z``, or None."""
     if shape.kind == "box" and shape.size is not None:
-        return _convex_section(_to_world(shape, box_corners(shape.size)), z)
+        return _box_section(shape, z, fast)
     if shape.kind == "cylinder" and shape.radius and shape.length:
         return _cylinder_section(shape, z)
     if shape.kind == "sphere" and shape.radius:
         return _sphere_section(shape, z)
     if shape.kind == "mesh":
-        return _mesh_section(shape, z)
+        return _mesh_section(shape, z)[0]
     return None   # ground planes and degenerate shapes
 
 
 def footprints(scene: Scene, z: float) -> list[Footprint]:
     """Every shape of ``scene`` cut at height ``z``, in scene order (shapes the plane misses are left out)."""
     out = []
-    for shape in scene.obstacles():
-        geometry = section(shape, z)
+    shapes = scene.obstacles()
+    fast = len(shapes) > FAST_BOXES
+    for shape in shapes:
+        geometry, note = _mesh_section(shape, z) if shape.kind == "mesh" else (section(shape, z, fast), None)
         if geometry is not None and not geometry.is_empty:
-            out.append(Footprint(shape.label, geometry))
+            out.append(Footprint(shape.label, geometry, note))
     return out
 
 
@@ -265,10 +228,17 @@ def footprints_between(scene: Scene, z0: float, z1: float, steps: int = 4, also:
 
     heights = sorted({z0 + (z1 - z0) * i / (steps - 1) for i in range(steps)} | set(also))
     out = []
-    for shape in scene.obstacles():
+    shapes = scene.obstacles()
+    fast = len(shapes) > FAST_BOXES
+    for shape in shapes:
+        upright = _upright_box(shape) if fast and shape.kind == "box" and shape.size is not None else None
+        if upright is not None and any(upright[0] < z < upright[1] for z in heights):
+            out.append(Footprint(shape.label, upright[2]))   # its sections at the other heights: the same, or none
+            continue
         parts = [g for g in (section(shape, z) for z in heights) if g is not None and not g.is_empty]
-        if parts:
-            out.append(Footprint(shape.label, shapely.union_all(parts)))
+        if parts:   # an upright shape's sections are all alike: no union needed
+            same = all(p.equals_exact(parts[0], 0.0) for p in parts[1:])
+            out.append(Footprint(shape.label, parts[0] if same else shapely.union_all(parts)))
     return out
 
 
@@ -314,7 +284,11 @@ def obstacle_union(prints: list[Footprint]):
     """The footprints united and grown by :data:`SLIVER` (empty geometry when there are none)."""
     import shapely
 
-    return shapely.union_all([p.geometry for p in prints]).buffer(SLIVER, quad_segs=2)
+    from .growth import SMALL, unite
+
+    if len(prints) <= SMALL:   # few: as GEOS does it (the same region; vertex for vertex as before)
+        return shapely.union_all([p.geometry for p in prints]).buffer(SLIVER, quad_segs=2)
+    return unite(shapely.buffer([p.geometry for p in prints], SLIVER, quad_segs=2))
 
 
 def _frame(obstacles, spawn, margin: float):
@@ -347,15 +321,33 @@ class _Space:
     is reached from the outside at radius ``r`` when an outside disc covers it.
     """
 
-    def __init__(self, obstacles, frame, limit: float = MAX_GAP):
-        self.obstacles, self.frame, self.limit = obstacles, frame, limit
+    def __init__(self, obstacles, frame, plugs: tuple = (), base: _Space | None = None, limit: float = MAX_GAP):
+        self.obstacles, self.frame, self.plugs, self.limit = obstacles, frame, plugs, limit
+        self.base = obstacles if base is None else base.base        # the obstacles before any plug
+        self._grown = {} if base is None else base._grown           # ``base`` grown, per radius: shared
         self._cache: dict[float, tuple] = {}
+
+    def grown(self, r: float):
+        """The obstacles (plugs included) grown by ``r``. Many obstacles: the unplugged ones are grown once per
+        radius for every plugged space, the plugs added to that. Few: GEOS's buffer of them all."""
+        import shapely
+
+        from .growth import SMALL, grown, unite
+
+        if len(shapely.get_parts(self.base)) <= SMALL:
+            return self.obstacles.buffer(r, quad_segs=8) if r > 0 else self.obstacles
+        key = round(r, 6)
+        if key not in self._grown:
+            self._grown[key] = grown(self.base, r, quad_segs=8)
+        if not self.plugs:
+            return self._grown[key]
+        plugs = shapely.buffer(list(self.plugs), r, quad_segs=8) if r > 0 else list(self.plugs)
+        return unite([*shapely.get_parts(self._grown[key]), *plugs])
 
     def at(self, r: float):
         key = round(r, 6)
         if key not in self._cache:
-            grown = self.obstacles.buffer(r, quad_segs=8) if r > 0 else self.obstacles
-            parts = _components(self.frame.difference(grown))
+            parts = _components(self.frame.difference(self.grown(r)))
             outside = next((c for c in parts if _reaches_outside(c, self.frame)), None)
             self._cache[key] = (parts, outside)
         return self._cache[key]
@@ -371,6 +363,8 @@ class _Space:
         off; None when even ``limit``/2 does not, (0, 0) when it is cut off already."""
         if self.cut_off(point, 0.0):
             return 0.0, 0.0
+        if not self.cut_off(point, self.limit / 2):   # a disc that passes there passes every smaller opening too
+            return None
         lo, hi = 0.0, 0.05
         while not self.cut_off(point, hi):
             if hi >= self.limit / 2:
@@ -384,7 +378,11 @@ class _Space:
     def plugged(self, plug) -> _Space:
         import shapely
 
-        return _Space(shapely.union_all([self.obstacles, plug]), self.frame, self.limit)
+        from .growth import SMALL, unite
+
+        parts = shapely.get_parts(self.obstacles)
+        united = shapely.union_all([self.obstacles, plug]) if len(parts) <= SMALL else unite([*parts, plug])
+        return _Space(united, self.frame, (*self.plugs, plug), self, self.limit)
 
 
 @dataclass
@@ -486,7 +484,8 @@ def _beyond(space: _Space, gap: Gap, outward, step: float = 0.05):
 MAX_DEPTH = 3   # how far the search follows a way out into further enclosed regions
 
 
-def _way_out(space: _Space, point, prints: list[Footprint], depth: int = 0) -> _Way | None:
+def _way_out(space: _Space, point, prints: list[Footprint], depth: int = 0, max_depth: int = MAX_DEPTH
+             ) -> _Way | None:
     """The widest way out from ``point``, or None when nothing encloses it at any scale up to the space's limit.
 
     The narrowest cut between the point and the outside may lie inside the building (beside a free-standing
@@ -499,8 +498,8 @@ def _way_out(space: _Space, point, prints: list[Footprint], depth: int = 0) -> _
     way = _neck(space, point, *bounds, prints)
     if way is None:
         return None
-    if depth < MAX_DEPTH and way.beyond is not None:
-        further = _way_out(space.plugged(way.plug), way.beyond, prints, depth + 1)
+    if depth < max_depth and way.beyond is not None:
+        further = _way_out(space.plugged(way.plug), way.beyond, prints, depth + 1, max_depth)
         if further is not None and further.real:
             return further
     return way
@@ -551,7 +550,7 @@ def analyse(prints: list[Footprint], spawn: tuple[float, float], height: float) 
         return Enclosure(spawn, height, enclosed=None, inside=prints[closest].label, nearest=nearest)
     limit = search_limit(obstacles, spawn)
     frame = _frame(obstacles, spawn, MARGIN + limit)
-    space = _Space(obstacles, frame, limit)
+    space = _Space(obstacles, frame, limit=limit)
     if space.cut_off(spawn, 0.0):
         region = next(c for c in space.at(0.0)[0] if c.covers(point))
         return Enclosure(spawn, height, enclosed=True, region_area=region.area,
@@ -559,8 +558,9 @@ def analyse(prints: list[Footprint], spawn: tuple[float, float], height: float) 
     rooms = _closed_regions(space.at(0.0)[0], frame, point)
     gaps: list[Gap] = []
     more = True
-    for _ in range(MAX_GAP_ROUNDS):   # name the widest way out, close it, look again
-        way = _way_out(space, spawn, prints)
+    many = len(prints) > MANY_SHAPES   # then only the widest way out, followed one region further
+    for _ in range(1 if many else MAX_GAP_ROUNDS):   # name the widest way out, close it, look again
+        way = _way_out(space, spawn, prints, max_depth=1 if many else MAX_DEPTH)
         if way is None or any(math.dist(way.gap.centre, g.centre) < 0.01 for g in gaps):
             more = False
             break
@@ -570,15 +570,6 @@ def analyse(prints: list[Footprint], spawn: tuple[float, float], height: float) 
             more = False
             break
     return Enclosure(spawn, height, enclosed=False, gaps=tuple(gaps), nearest=nearest, rooms=rooms, more=more)
-
-
-def search_limit(obstacles, spawn) -> float:
-    """The widest opening searched for: :data:`MAX_GAP`, or the extent of the walls and the spawn together
-    (an open corridor end or a missing wall can be as wide as the building), at most :data:`MAX_SEARCH`."""
-    x0, y0, x1, y1 = obstacles.bounds
-    x0, x1 = min(x0, spawn[0]), max(x1, spawn[0])
-    y0, y1 = min(y0, spawn[1]), max(y1, spawn[1])
-    return min(MAX_SEARCH, max(MAX_GAP, math.hypot(x1 - x0, y1 - y0)))
 
 
 ROOM_MIN_AREA = 0.25   # m²: closed pockets smaller than this (inside a pillar, between joined walls) are no rooms
@@ -591,5 +582,21 @@ def _closed_regions(parts, frame, point) -> tuple[tuple[float, float, float, flo
 
 
 def enclosure(scene: Scene, spawn: tuple[float, float], height: float) -> Enclosure:
-    """:func:`analyse` of the scene cut at ``height``."""
-    return analyse(footprints(scene, height), spawn, height)
+    """:func:`analyse` of the scene cut at ``height``, with the notes of any footprint simplified on the way."""
+    from dataclasses import replace
+
+    prints = footprints(scene, height)
+    notes = tuple(f"mesh {p.label}: {p.note}" for p in prints if p.note)
+    if len(prints) > MANY_SHAPES:
+        notes += (f"{len(prints)} shapes stand at the slicing height, more than {MANY_SHAPES}: only the widest way "
+                  f"out is searched (not up to {MAX_GAP_ROUNDS}), to keep the check fast",)
+    return replace(analyse(prints, spawn, height), notes=notes)
+
+
+def search_limit(obstacles, spawn) -> float:
+    """The widest opening searched for: :data:`MAX_GAP`, or the extent of the walls and the spawn together
+    (an open corridor end or a missing wall can be as wide as the building), at most :data:`MAX_SEARCH`."""
+    x0, y0, x1, y1 = obstacles.bounds
+    x0, x1 = min(x0, spawn[0]), max(x1, spawn[0])
+    y0, y1 = min(y0, spawn[1]), max(y1, spawn[1])
+    return min(MAX_SEARCH, max(MAX_GAP, math.hypot(x1 - x0, y1 - y0)))

@@ -18,6 +18,7 @@ from pathlib import Path
 
 from ..core import packages as rospkg
 from ..core.errors import InputError, WorldFileError
+from ..core.inputs import check_regular, read_capped
 from ..core.resources import robots_dir
 from ..core.safexml import parse_bytes
 from ..spec.model import ROBOT_MODELS
@@ -89,9 +90,10 @@ def robot_urdf(robot: str | Path = "burger", mappings: dict[str, str] | None = N
     Errors (missing file or package, xacro or XML errors) become :class:`InputError` naming the file.
     """
     path = robot_file(robot)
+    check_regular(path, InputError, "robot description")
     if path.suffix == ".urdf":
         try:
-            text = path.read_text(encoding="utf-8")
+            text = read_capped(path, error=InputError, what="robot description").decode("utf-8")
             parse_bytes(text.encode("utf-8"), path, hint="fix the URDF file (it must be well-formed XML)")
         except (OSError, UnicodeDecodeError) as err:
             raise InputError(f"cannot read the robot description: {err}", path=path,

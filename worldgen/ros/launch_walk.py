@@ -25,6 +25,7 @@ from .substitution import (ArgValue, Lookup, Scope, Unresolved, condition, expan
 XACRO_MODEL = re.compile(r"turtlebot3_([A-Za-z0-9_]+)\.urdf(?:\.xacro)?\b")
 GAZEBO_FLAGS = {"-x": 0, "-y": 1, "-z": 2, "-Y": 3}
 MAX_INCLUDE_DEPTH = 16
+MAX_LAUNCH_FILES = 1000   # launch files read for one, counting each include of each (a fan-out grows exponentially)
 STOCK_PACKAGES = frozenset({"gazebo_ros", "xacro", "turtlebot3_description", "turtlebot3_gazebo"})
 
 
@@ -37,6 +38,7 @@ class LaunchRead:
     params: Dict[str, str] = field(default_factory=dict)   # full name → text (unresolved parts marked)
     stack: List[Path] = field(default_factory=list)         # the files being read, outermost first
     raw_args: Dict[str, Optional[str]] = field(default_factory=dict)   # the top-level args as written
+    loaded: int = 0                                          # launch files read so far, includes counted
 
     def note(self, check: str, severity: str, message: str, scope: Scope, line: int | None, fix: str | None):
         """A finding at ``scope``'s file and ``line`` (each one once)."""
@@ -62,10 +64,11 @@ class LaunchRead:
 
 def parse_launch_xml(path: Path, what: str = "launch file"):
     """The root element of the XML file ``path``; WorldFileError when it cannot be read or is not XML."""
+    from ..core.inputs import read_capped
     from ..core.safexml import parse_bytes
 
     try:
-        data = Path(path).read_bytes()
+        data = read_capped(path, what=what)
     except OSError as err:
         raise WorldFileError(f"cannot read the {what}: {err.strerror or err}", path=path,
                              hint="check the path") from None
@@ -83,6 +86,11 @@ def load_launch(read: LaunchRead, path: Path, passed: Dict[str, ArgValue], ns: s
                              hint="remove the circular <include>")
     if len(read.stack) >= MAX_INCLUDE_DEPTH:
         raise WorldFileError("includes nest too deeply", path=path, line=line, hint="remove circular includes")
+    read.loaded += 1
+    if read.loaded > MAX_LAUNCH_FILES:
+        raise WorldFileError(f"more than {MAX_LAUNCH_FILES} launch files are read for this one (includes inside "
+                             "includes, each counted)", path=path, line=line,
+                             hint="include fewer files (see Limits in the README)")
     root = parse_launch_xml(path)
     if root.tag != "launch":
         raise WorldFileError(f"the root element is <{root.tag}>, not <launch>", path=path,

@@ -64,7 +64,7 @@ def check_package(pkg_dir: str | Path, *, ros_package_path: Sequence[str | Path]
             if not os.access(script, os.X_OK):
                 add("script-executable", "error", "script is not executable: rosrun and roslaunch cannot start it",
                     script, f"chmod +x {script}")
-            elif script.suffix == ".py" and not script.read_bytes().startswith(b"#!"):
+            elif script.suffix == ".py" and not _head(script).startswith(b"#!"):
                 add("script-executable", "error", "Python script has no #! line", script,
                     "start it with #!/usr/bin/env python3")
     used: set[str] = set()
@@ -99,7 +99,7 @@ def _read_manifest(manifest: Path, add) -> tuple[str, set[str] | None]:
 
 
 def _check_cmake(cmake: Path, name: str, pkg_dir: Path, add) -> None:
-    text = re.sub(r"#[^\n]*", "", cmake.read_text(encoding="utf-8", errors="replace"))
+    text = re.sub(r"#[^\n]*", "", _text(cmake))
     project = re.search(r"\bproject\s*\(\s*([^\s)]+)", text, re.IGNORECASE)
     if not project:
         add("cmake", "error", "CMakeLists.txt has no project() call", cmake, f"add project({name})")
@@ -147,5 +147,25 @@ def _check_launch(launch: Path, name: str, pkg_dir: Path, used: set[str], add, r
             elif not os.access(exe, os.X_OK):
                 add("launch-node", "error", f"node {node.full_name}: {exe} is not executable",
                     f"{launch}:{node.line}", f"chmod +x {exe}")
-    text = launch.read_text(encoding="utf-8", errors="replace")
+    text = _text(launch)
     used.update(re.findall(r"\$\(find\s+([^)\s]+)\)", text))
+
+
+def _head(path: Path) -> bytes:
+    """The first two bytes of a file (empty when it cannot be read)."""
+    try:
+        with open(path, "rb") as handle:
+            return handle.read(2)
+    except OSError:
+        return b""
+
+
+def _text(path: Path) -> str:
+    """A file's text (capped, never a pipe or device; empty when it cannot be read)."""
+    from ..core.errors import WorldgenError
+    from ..core.inputs import read_capped
+
+    try:
+        return read_capped(path).decode("utf-8", "replace")
+    except (OSError, WorldgenError):
+        return ""

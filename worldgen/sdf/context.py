@@ -31,6 +31,8 @@ class ReadContext:
     findings: List[Finding] = field(default_factory=list)
     include_stack: List[Path] = field(default_factory=list)        # the included files being read, outermost first
     missing_meshes: Dict[str, list] = field(default_factory=dict)  # uri -> [reason, fix, where, labels]
+    parsed: Dict[Path, object] = field(default_factory=dict)       # included files: root element, or the error
+    include_count: int = 0                                         # includes read so far, at every depth
 
     @classmethod
     def start(cls, source: Path, model_paths) -> ReadContext:

@@ -12,6 +12,7 @@ from typing import Callable, Optional, Tuple
 import numpy as np
 
 from ..core.errors import WorldFileError
+from ..core.inputs import read_capped
 from .context import ReadContext, SdfFile, describe_file, parse_sdf
 from .frames import Frames
 from .resolve import STOCK_MODELS, Resolved, model_sdf_file, uri_fix
@@ -19,7 +20,8 @@ from .tree import Model, ground_plane
 from .values import children, read_bool, read_pose
 
 INCLUDE_CHILDREN = {"uri", "name", "pose", "static", "plugin", "placement_frame"}
-MAX_INCLUDE_DEPTH = 16
+MAX_INCLUDE_DEPTH = 16   # includes inside included models, nested
+MAX_INCLUDES = 5000      # model files included in one world read, counting every copy at every depth
 
 # read_model(ctx, model_element, file, parent_static, frames, name=..., static=...) -> Model
 ReadModel = Callable[..., Model]
@@ -65,6 +67,21 @@ def read_include(ctx: ReadContext, el, f: SdfFile, parent_static: bool, frames: 
     return (model, *read_pose(ctx, el, f))
 
 
+def _count_include(ctx: ReadContext, uri: str, where: str) -> None:
+    """Refuse (WorldFileError) an include nested deeper than MAX_INCLUDE_DEPTH or past MAX_INCLUDES in all:
+    a world whose includes fan out (each model including several others) grows exponentially."""
+    ctx.include_count += 1
+    if len(ctx.include_stack) >= MAX_INCLUDE_DEPTH:
+        raise WorldFileError(f"{where}: {uri} is nested more than {MAX_INCLUDE_DEPTH} includes deep, the most "
+                             "worldgen follows", path=None,
+                             hint="include the innermost models from an outer file (see Limits in the README)")
+    if ctx.include_count > MAX_INCLUDES:
+        raise WorldFileError(f"{where}: the world includes more than {MAX_INCLUDES} models (counting the includes "
+                             "inside included models), the most worldgen reads", path=None,
+                             hint="include fewer copies, or merge repeated models into one model file (see "
+                                  "Limits in the README)")
+
+
 def load_included(ctx: ReadContext, resolved: Resolved, where: str, parent_static: bool, name: Optional[str],
                   static: Optional[bool], frames: Frames, read_model: ReadModel) -> Optional[Model]:
     """Parse the model file ``resolved`` points at (a model folder's SDF file) and read its ``<model>``, with
@@ -81,15 +98,19 @@ def load_included(ctx: ReadContext, resolved: Resolved, where: str, parent_stati
                      where, "give the model folder a model.config and a model.sdf")
             return None
         path = sdf_file
-    if path in ctx.include_stack or len(ctx.include_stack) >= MAX_INCLUDE_DEPTH:
-        why = ("includes itself (directly or through other models)" if path in ctx.include_stack else
-               f"is nested more than {MAX_INCLUDE_DEPTH} includes deep")
-        ctx.note("include", "error", f"{resolved.uri} {why}", where, "break the include cycle")
+    if path in ctx.include_stack:
+        ctx.note("include", "error", f"{resolved.uri} includes itself (directly or through other models)", where,
+                 "break the include cycle")
         return None
-    try:
-        root = parse_sdf(path.read_bytes(), path)
-    except (WorldFileError, OSError) as err:
-        ctx.note("include", "error", f"included model {resolved.uri} cannot be read: {err}", where,
+    _count_include(ctx, resolved.uri, where)
+    if path not in ctx.parsed:   # a model included many times is parsed once
+        try:
+            ctx.parsed[path] = parse_sdf(read_capped(path, what="model file"), path)
+        except (WorldFileError, OSError) as err:
+            ctx.parsed[path] = err
+    root = ctx.parsed[path]
+    if isinstance(root, Exception):
+        ctx.note("include", "error", f"included model {resolved.uri} cannot be read: {root}", where,
                  "fix the included file")
         return None
     inc = describe_file(ctx, root, path)

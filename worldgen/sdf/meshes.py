@@ -12,7 +12,9 @@ the file.
 
 from __future__ import annotations
 
+import os
 import re
+import stat
 from pathlib import Path
 
 import numpy as np
@@ -55,6 +57,17 @@ class MeshCache:
     def _load(path: Path, scale) -> tuple[np.ndarray, np.ndarray] | str:
         import trimesh  # lazy: heavy import, needed only for worlds with meshes
 
+        from ..core.inputs import MAX_INPUT_BYTES
+
+        try:
+            info = os.stat(path)
+        except OSError as err:
+            return f"cannot be read ({err.strerror})"
+        if not stat.S_ISREG(info.st_mode):
+            return "is not a regular file (a pipe, device or socket)"
+        if info.st_size > MAX_INPUT_BYTES:
+            return (f"is larger than {MAX_INPUT_BYTES // 2 ** 20} MiB, the most worldgen reads (see Limits in the "
+                    "README)")
         try:
             mesh = trimesh.load(str(path), force="mesh")
         except Exception as err:  # trimesh raises many types for bad files; all mean "cannot use this mesh"

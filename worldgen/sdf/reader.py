@@ -22,6 +22,7 @@ from pathlib import Path
 from lxml import etree
 
 from ..core.errors import WorldFileError
+from ..core.inputs import read_capped
 from ..core.scene import Scene
 from .context import ReadContext, SdfFile, describe_file, parse_sdf
 from .emit import emit_models
@@ -47,7 +48,7 @@ def read_world(path, *, model_paths=(), apply_state=True) -> Scene:
                                  hint="pass a .world file or a model folder")
         path = sdf_file
     try:
-        data = path.read_bytes()
+        data = read_capped(path, what="world file")
     except FileNotFoundError:
         raise WorldFileError("no such file", path=path, hint="check the path and the file name") from None
     except OSError as err:

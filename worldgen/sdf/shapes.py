@@ -23,20 +23,22 @@ def read_geometry(ctx: ReadContext, geometry, f: SdfFile, label: str) -> Optiona
     where = f.where(g)
     if g.tag == "box":
         size = read_floats(ctx, g.findtext("size"), 3, (1.0, 1.0, 1.0), f, g, f"box size of {label}")
-        if min(size) <= 0:
-            return _bad_size(ctx, f"box {label} has size {fmt(size)}: every side must be positive", where)
+        if min(size) <= 0 or _too_large(size):
+            return _bad_size(ctx, f"box {label} has size {fmt(size)}: every side must be positive and under "
+                             f"{MAX_SIZE:g} m", where)
         return {"kind": "box", "size": size}
     if g.tag == "cylinder":
         radius = read_floats(ctx, g.findtext("radius"), 1, (1.0,), f, g, f"cylinder radius of {label}")[0]
         length = read_floats(ctx, g.findtext("length"), 1, (1.0,), f, g, f"cylinder length of {label}")[0]
-        if radius <= 0 or length <= 0:
+        if radius <= 0 or length <= 0 or _too_large((radius, length)):
             return _bad_size(ctx, f"cylinder {label} has radius {radius:g} and length {length:g}: both must be "
-                             "positive", where)
+                             f"positive and under {MAX_SIZE:g} m", where)
         return {"kind": "cylinder", "radius": radius, "length": length}
     if g.tag == "sphere":
         radius = read_floats(ctx, g.findtext("radius"), 1, (1.0,), f, g, f"sphere radius of {label}")[0]
-        if radius <= 0:
-            return _bad_size(ctx, f"sphere {label} has radius {radius:g}: it must be positive", where)
+        if radius <= 0 or _too_large((radius,)):
+            return _bad_size(ctx, f"sphere {label} has radius {radius:g}: it must be positive and under "
+                             f"{MAX_SIZE:g} m", where)
         return {"kind": "sphere", "radius": radius}
     if g.tag == "plane":
         normal = np.array(read_floats(ctx, g.findtext("normal"), 3, (0.0, 0.0, 1.0), f, g, f"normal of {label}"))
@@ -53,6 +55,13 @@ def read_geometry(ctx: ReadContext, geometry, f: SdfFile, label: str) -> Optiona
     return None
 
 
+MAX_SIZE = 1e6   # m: a shape larger than this (1000 km) is a typo, and its arithmetic overflows
+
+
+def _too_large(values) -> bool:
+    return any(abs(v) > MAX_SIZE for v in values)
+
+
 def _bad_size(ctx: ReadContext, message: str, where: str) -> None:
     ctx.note("sizes", "error", message + "; the shape is skipped", where,
              "give the shape a real size (metres, greater than zero)")
@@ -67,8 +76,9 @@ def read_mesh(ctx: ReadContext, g, f: SdfFile, label: str) -> Optional[dict]:
                  "add <uri>model://MODEL/meshes/FILE</uri>")
         return None
     scale = read_floats(ctx, g.findtext("scale"), 3, (1.0, 1.0, 1.0), f, g, f"mesh scale of {label}")
-    if min(scale) <= 0:
-        return _bad_size(ctx, f"mesh {label} has scale {fmt(scale)}: every factor must be positive", f.where(g))
+    if min(scale) <= 0 or _too_large(scale):
+        return _bad_size(ctx, f"mesh {label} has scale {fmt(scale)}: every factor must be positive and under "
+                         f"{MAX_SIZE:g}", f.where(g))
     if g.find("submesh") is not None:
         ctx.note("mesh", "info", f"mesh {label} names a <submesh>; the whole mesh is used", f.where(g))
     resolved = ctx.resolver.resolve(uri, f.dir, want_dir=False)

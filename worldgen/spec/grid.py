@@ -29,6 +29,8 @@ FREE = frozenset(". ")
 ROBOT_HEADINGS = {"R": 0.0, ">": 0.0, "^": math.pi / 2, "<": math.pi, "v": -math.pi / 2}
 POST_PREFIX = "grid_post_"   # a lone cell's post is the obstacle named grid_post_ROW_COLUMN (from 1)
 LEGEND = "use # for a wall, . or space for free floor, R or > ^ < v for the robot and its heading"
+MAX_CELLS = 64_000_000   # cells of one grid (as many as a map may have pixels)
+MAX_PIECES = 50_000      # walls and posts one grid may become
 
 
 @dataclass(frozen=True)
@@ -43,18 +45,24 @@ class GridPlan:
 
 
 def plan_grid(rows: Sequence[str], cell: float, origin: Point = (0.0, 0.0), *, source: str | None = None,
-              row_lines: Sequence[int | None] | None = None) -> GridPlan:
+              row_lines: Sequence[int | None] | None = None, max_pieces: int | None = MAX_PIECES) -> GridPlan:
     """Turn grid rows (top row first) into walls, posts and the robot pose.
 
     ``row_lines`` gives each row's line in ``source`` so that a bad character is reported where it is.
-    Raises SpecError for an unknown character, a second robot, or a grid without any wall.
+    Raises SpecError for an unknown character, a second robot, a grid without any wall, or one that makes more
+    than ``max_pieces`` walls and posts (None: no limit; the caller checks).
     """
     def line_of(r: int) -> int | None:
         return row_lines[r] if row_lines is not None and r < len(row_lines) else None
 
     width = max((len(row) for row in rows), default=0)
+    if width * len(rows) > MAX_CELLS:
+        raise SpecError(f"the grid has {width} × {len(rows)} cells, more than the {MAX_CELLS:,} worldgen reads",
+                        path=source, line=line_of(0), hint="use a coarser cell (see Limits in the README)")
     grid = [row.ljust(width) for row in rows]
     height = len(grid)
+    if max_pieces is not None:
+        _refuse_lone_cells(grid, max_pieces, source, line_of(0))
     ox, oy = origin
 
     def centre(r: int, c: int) -> Point:
@@ -98,7 +106,26 @@ def plan_grid(rows: Sequence[str], cell: float, origin: Point = (0.0, 0.0), *, s
 
     posts = tuple((r, c, centre(r, c)) for r in range(height) for c in range(width)
                   if is_wall[r][c] and not _has_wall_neighbour(is_wall, r, c))
+    if max_pieces is not None and len(walls) + len(posts) > max_pieces:
+        raise SpecError(f"the grid makes {len(walls) + len(posts):,} walls and posts, more than the {max_pieces:,} "
+                        "worldgen builds from one grid", path=source, line=line_of(0),
+                        hint="join the lone # cells into walls, or use a coarser cell (see Limits in the README)")
     return GridPlan(tuple(walls), posts, robot, height, width)
+
+
+def _refuse_lone_cells(grid: Sequence[str], max_pieces: int, source: str | None, line: int | None) -> None:
+    """SpecError at once when the lone ``#`` cells alone (each a post) are more than ``max_pieces``."""
+    if len(grid) * len(grid[0] if grid else "") <= max_pieces:
+        return
+    import numpy as np
+
+    cells = np.array([np.frombuffer(row.encode("utf-32-le"), dtype=np.uint32) for row in grid]) == ord(WALL)
+    padded = np.pad(cells, 1)
+    lone = int((cells & ~(padded[:-2, 1:-1] | padded[2:, 1:-1] | padded[1:-1, :-2] | padded[1:-1, 2:])).sum())
+    if lone > max_pieces:
+        raise SpecError(f"the grid makes {lone:,} posts (lone # cells) at least, more than the {max_pieces:,} walls "
+                        "and posts worldgen builds from one grid", path=source, line=line,
+                        hint="join the lone # cells into walls, or use a coarser cell (see Limits in the README)")
 
 
 def _runs(cells: Sequence[bool]) -> list[tuple[int, int]]:

@@ -13,6 +13,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from ..core.errors import SpecError
+from ..core.inputs import MAX_SPEC_BYTES, read_text_capped
 from . import values
 from .grid_spec import read_grid, read_grid_file
 from .messages import check_name, describe
@@ -48,7 +49,7 @@ def load_spec(path: str | Path) -> Spec:
         raise SpecError("is an image, not a spec", path=path,
                         hint="for a ROS map, give the map's YAML (map.yaml, as map_saver writes it beside the image)")
     try:
-        text = path.read_text(encoding="utf-8")
+        text = read_text_capped(path, MAX_SPEC_BYTES, SpecError, "spec")
     except FileNotFoundError:
         raise SpecError("no such file", path=path, hint="check the spec's path") from None
     except IsADirectoryError:

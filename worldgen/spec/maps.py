@@ -25,6 +25,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..core.errors import SpecError
+from ..core.inputs import MAX_SPEC_BYTES, read_text_capped
 from . import values
 from .grid import plan_grid
 from .messages import describe, describe_sized, did_you_mean, metres, suggest_name
@@ -41,6 +42,9 @@ IMAGE_SUFFIXES = (".pgm", ".png", ".bmp", ".jpg", ".jpeg", ".gif", ".tif", ".tif
 POST_PREFIX = "map_post_"
 _IMAGE_MODES = ("1", "L", "LA", "P", "PA", "RGB", "RGBA")   # 8-bit grey or colour, as map_server's loader takes
 _YAW_EPS = 1e-6                  # map_saver writes a zero yaw as 0.000000 or -0.000000
+MAX_MAP_PIXELS = 64_000_000      # width × height of the image (a 8000 × 8000 map); larger ones are refused
+MAX_MAP_PIECES = 50_000          # walls and posts one map may become; past it specks are removed, then refused
+SPECK_PIXELS = 5                 # occupied blobs (8-connected) smaller than this are specks: SLAM noise
 
 
 @dataclass(frozen=True)
@@ -154,7 +158,7 @@ def read_map_yaml(src: Source, root: Node) -> MapFile:
 def load_map_yaml(path: Path) -> MapFile:
     """Read a map_server YAML file (for ``map: FILE``); SpecError names the file and line of a problem."""
     try:
-        text = path.read_text(encoding="utf-8")
+        text = read_text_capped(path, MAX_SPEC_BYTES, SpecError, "map file")
     except UnicodeDecodeError as err:
         raise SpecError(f"is not UTF-8 text ({err.reason} at byte {err.start})", path=path,
                         hint="map: names the map's YAML file (map.yaml), not its image") from None
@@ -181,6 +185,10 @@ def read_occupancy(m: MapFile) -> Occupancy:
         with Image.open(m.image) as img:
             if img.mode not in _IMAGE_MODES:
                 raise fail(f"has {img.mode} pixels", "save it as an 8-bit grey PGM or PNG, as map_saver does")
+            if img.size[0] * img.size[1] > MAX_MAP_PIXELS:
+                raise fail(f"has {img.size[0]} × {img.size[1]} pixels, more than the {MAX_MAP_PIXELS:,} worldgen "
+                           "reads", "crop the map to the building, or save it at a coarser resolution (see "
+                           "Limits in the README)")
             img = img.convert("L" if img.mode == "1" else "RGBA" if img.mode in ("P", "PA") else img.mode)
             pixels = np.asarray(img)
     except Image.DecompressionBombError:
@@ -205,13 +213,83 @@ def read_occupancy(m: MapFile) -> Occupancy:
                    f"{metres(m.occupied_thresh)} (the highest is {highest:.3f})",
                    "check negate (1 when walls are light) and occupied_thresh")
     top, bottom, left, right = int(rows_hit[0]), int(rows_hit[-1]), int(columns_hit[0]), int(columns_hit[-1])
-    crop = occupied[top:bottom + 1, left:right + 1]
+    crop = _bounded(occupied[top:bottom + 1, left:right + 1], fail)
     text = np.where(crop, ord("#"), ord(".")).astype(np.uint8).tobytes().decode("ascii")
     n = right - left + 1
     rows = tuple(text[i:i + n] for i in range(0, len(text), n))
     res = m.resolution
     origin = (round(m.origin[0] + left * res, 9), round(m.origin[1] + (height - 1 - bottom) * res, 9))
     return Occupancy(rows=rows, top=top, left=left, origin=origin)
+
+
+def pieces(occupied) -> int:
+    """At most how many walls and posts the grid planner makes of the ``occupied`` pixels: its runs of two or
+    more along rows and along columns, and its lone pixels."""
+    import numpy as np
+
+    def runs(grid) -> int:
+        padded = np.pad(grid, ((0, 0), (1, 1)))
+        starts, ends = np.nonzero(np.diff(padded.astype(np.int8), axis=1) == 1), \
+            np.nonzero(np.diff(padded.astype(np.int8), axis=1) == -1)
+        return int(((ends[1] - starts[1]) >= 2).sum())
+
+    return runs(occupied) + runs(occupied.T) + lone_pixels(occupied)
+
+
+def lone_pixels(occupied) -> int:
+    """How many occupied pixels have no occupied neighbour left, right, above or below: each becomes a post."""
+    import numpy as np
+
+    p = np.pad(occupied, 1)
+    return int((occupied & ~(p[:-2, 1:-1] | p[2:, 1:-1] | p[1:-1, :-2] | p[1:-1, 2:])).sum())
+
+
+def without_specks(occupied, smallest: int = SPECK_PIXELS):
+    """``occupied`` without its specks (blobs of fewer than ``smallest`` pixels, 8-connected), and how many
+    blobs are left."""
+    import numpy as np
+
+    from ..core.labels import connected_labels
+
+    height, width = occupied.shape
+    index = np.full(occupied.shape, -1, dtype=np.int64)
+    rows, columns = np.nonzero(occupied)
+    index[rows, columns] = np.arange(len(rows))
+    a, b = [], []
+    for dr, dc in ((0, 1), (1, 0), (1, 1), (1, -1)):   # each neighbour pair once: (r, c) and (r + dr, c + dc)
+        here = index[:height - dr, max(0, -dc):width - max(0, dc)]
+        there = index[dr:, max(0, dc):width - max(0, -dc)]
+        both = (here >= 0) & (there >= 0)
+        a.append(here[both])
+        b.append(there[both])
+    label = connected_labels(len(rows), np.concatenate(a), np.concatenate(b))
+    sizes = np.bincount(label, minlength=len(rows))
+    keep = np.zeros_like(occupied)
+    big = sizes[label] >= smallest
+    keep[rows[big], columns[big]] = True
+    return keep, int((sizes >= smallest).sum())
+
+
+def _too_many(count: int, fail, how: str = "") -> SpecError:
+    return fail(f"would make {how}{count:,} walls and posts even without its specks (blobs under {SPECK_PIXELS} "
+                f"pixels), more than the {MAX_MAP_PIECES:,} worldgen builds from one map",
+                "clean the noise off the map in an image editor, or crop it to the building (see Limits in the "
+                "README)")
+
+
+def _bounded(occupied, fail):
+    """``occupied``, or without specks when it could make more than :data:`MAX_MAP_PIECES` walls and posts;
+    ``fail`` (SpecError) when even its blobs, or its lone pixels, are more than that (each needs one at least)."""
+    if pieces(occupied) <= MAX_MAP_PIECES:
+        return occupied
+    cleaned, blobs = without_specks(occupied)
+    least = max(blobs, lone_pixels(cleaned))
+    if least > MAX_MAP_PIECES:
+        raise _too_many(least, fail, "at least ")
+    if not cleaned.any():
+        raise fail(f"holds nothing but specks (blobs under {SPECK_PIXELS} pixels), too many of them to build",
+                   "clean the noise off the map in an image editor")
+    return cleaned
 
 
 def map_parts(m: MapFile, base: WallStyle, line: int | None) -> tuple[list[Segment], list[Obstacle]]:
@@ -224,7 +302,10 @@ def map_parts(m: MapFile, base: WallStyle, line: int | None) -> tuple[list[Segme
         raise SpecError(f"the map's walls reach farther than {LIMIT:g} m from the origin ({columns} × {rows} pixels "
                         f"of {metres(res)} m from ({metres(x0)}, {metres(y0)}))", path=m.path, line=m.line,
                         hint="check the resolution (metres per pixel) and the origin")
-    plan = plan_grid(grid.rows, res, grid.origin, source=str(m.path))
+    plan = plan_grid(grid.rows, res, grid.origin, source=str(m.path), max_pieces=None)   # checked here, below
+    if len(plan.walls) + len(plan.posts) > MAX_MAP_PIECES:
+        raise _too_many(len(plan.walls) + len(plan.posts), lambda message, hint: SpecError(
+            f"the map's image {m.image.name} {message}", path=m.path, line=m.line, hint=hint))
     style = WallStyle(thickness=res, height=base.height, material=base.material)
     segments = [Segment(start=a, end=b, style=style, line=line) for a, b in plan.walls]
     posts = [Obstacle(shape="box", at=at, size=(res, res, base.height), material=base.material,

@@ -11,6 +11,10 @@ import yaml
 
 from ..core.errors import SpecError
 
+MAX_DEPTH = 64            # lists and mappings nested in one another
+MAX_VALUES = 200_000      # values once every alias (*name) and merge key (<<:) is expanded
+FAST_DEPTH = 200          # libyaml's composer recurses without a check: deeper text goes to the pure parser
+
 
 class Node:
     """A YAML value with its line (1-based): ``value`` is a dict of key → Node, a list of Node, or a scalar."""
@@ -26,6 +30,8 @@ def compose(text: str, source: str | None) -> Node | None:
     times faster on big specs; text it refuses is parsed again by the pure-Python parser, whose messages and
     marks the errors below are worded for, so an error reads the same (same line) with or without libyaml."""
     fast = getattr(yaml, "CSafeLoader", None)
+    if fast is not None and _depth_bound(text) > FAST_DEPTH:
+        fast = None   # the pure parser's recursion is checked (RecursionError, below); libyaml's is not
     try:
         if fast is not None:
             try:
@@ -48,14 +54,57 @@ def compose(text: str, source: str | None) -> Node | None:
     except yaml.YAMLError as err:
         raise SpecError(f"invalid YAML: {err}", path=source) from None
     except RecursionError:
-        raise SpecError("lists or blocks are nested too deeply", path=source,
+        raise SpecError(f"lists or blocks are nested too deeply (more than {MAX_DEPTH} levels)", path=source,
                         hint="a spec nests a few levels at most; check the brackets") from None
+
+
+def _depth_bound(text: str) -> int:
+    """At least as deep as the text's nesting can be: the deepest run of open brackets plus the widest
+    indentation (dashes included). Cheap: no parsing."""
+    import re
+
+    import numpy as np
+
+    data = np.frombuffer(text.encode("utf-8", "replace"), dtype=np.uint8)
+    opened = np.isin(data, (ord("["), ord("{"))).astype(np.int64) - np.isin(data, (ord("]"), ord("}")))
+    brackets = int(np.cumsum(opened).max()) if len(data) else 0
+    indent = max((len(m) for m in re.findall(r"(?m)^[ \t?:-]*", text)), default=0)
+    return brackets + indent
+
+
+def _expanded_size(node, memo: dict, depth: int, source) -> int:
+    """How many values ``node`` stands for once its aliases and merge keys are expanded (each alias counted
+    every time it is used); SpecError past MAX_DEPTH levels or MAX_VALUES values."""
+    key = id(node)
+    if key in memo:
+        if memo[key] is None:
+            raise SpecError("a YAML alias refers to itself", path=source, line=node.start_mark.line + 1,
+                            hint="remove the recursive *alias")
+        return memo[key]
+    if depth > MAX_DEPTH:
+        raise SpecError(f"lists or blocks are nested too deeply (more than {MAX_DEPTH} levels)", path=source,
+                        line=node.start_mark.line + 1, hint="a spec nests a few levels at most; check the brackets")
+    memo[key] = None
+    size = 1
+    if isinstance(node, yaml.SequenceNode):
+        size += sum(_expanded_size(child, memo, depth + 1, source) for child in node.value)
+    elif isinstance(node, yaml.MappingNode):
+        for k, v in node.value:
+            size += _expanded_size(k, memo, depth + 1, source) + _expanded_size(v, memo, depth + 1, source)
+    if size > MAX_VALUES:
+        raise SpecError(f"the YAML stands for more than {MAX_VALUES:,} values once its aliases (*name) and merge "
+                        "keys (<<:) are expanded", path=source, line=node.start_mark.line + 1,
+                        hint="write the values out, or use fewer nested aliases (see Limits in the README)")
+    memo[key] = size
+    return size
 
 
 def _nodes(loader, source: str | None) -> Node | None:
     """The single document ``loader`` reads, as Nodes (None when the text holds none)."""
     try:
         root = loader.get_single_node()
+        if root is not None:
+            _expanded_size(root, {}, 0, source)
         return None if root is None else _convert(root, loader, {}, set(), source)
     finally:
         loader.dispose()
@@ -69,7 +118,7 @@ def _convert(node, loader, memo: dict, active: set, source) -> Node:
     if id(node) in active:
         raise SpecError("a YAML alias refers to itself", path=source, line=line, hint="remove the recursive *alias")
     if isinstance(node, yaml.ScalarNode):
-        out = Node(loader.construct_object(node), line, style=node.style or None)   # libyaml: '' for plain
+        out = Node(_scalar(node, loader, line, source), line, style=node.style or None)   # libyaml: '' for plain
     elif isinstance(node, yaml.SequenceNode):
         active.add(id(node))
         out = Node([_convert(child, loader, memo, active, source) for child in node.value], line)
@@ -98,3 +147,15 @@ def _convert(node, loader, memo: dict, active: set, source) -> Node:
         out = Node(values, line, lines)
     memo[id(node)] = out
     return out
+
+
+def _scalar(node, loader, line: int, source):
+    """A scalar's value; SpecError for one its tag cannot make (``!!int abc``, a date like 2001-13-45)."""
+    try:
+        return loader.construct_object(node)
+    except yaml.YAMLError:
+        raise
+    except (ValueError, TypeError, OverflowError, ArithmeticError) as err:
+        tag = node.tag.rsplit(":", 1)[-1] if node.tag else "value"
+        raise SpecError(f"'{node.value}' is not a valid {tag} ({err})", path=source, line=line,
+                        hint="quote it to keep it as text, or write a valid value") from None
