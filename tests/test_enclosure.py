@@ -7,7 +7,8 @@ import math
 import numpy as np
 import pytest
 
-from worldgen.geometry.enclosure import analyse, enclosure, footprints, section
+from worldgen.geometry.enclosure import analyse, enclosure
+from worldgen.geometry.slices import footprints, section
 from worldgen.core.scene import Scene, Shape
 
 LIDAR_Z = 0.182   # burger

@@ -16,7 +16,7 @@ from conftest import REPO, CliRunner
 
 from worldgen.cli import main
 from worldgen.core import inputs
-from worldgen.geometry import enclosure, growth
+from worldgen.geometry import enclosure, growth, slices
 from worldgen.sdf import includes
 from worldgen.spec import maps, nodes
 
@@ -250,7 +250,7 @@ def test_many_boxes_give_the_same_enclosure_as_the_exact_path(monkeypatch):
     scene = read_world_text(world(walls + clutter))
     exact = enclosure.enclosure(scene, (-1.3, -1.3), 0.2)
     monkeypatch.setattr(growth, "SMALL", 3)
-    monkeypatch.setattr(enclosure, "FAST_BOXES", 3)
+    monkeypatch.setattr(slices, "FAST_BOXES", 3)
     fast = enclosure.enclosure(scene, (-1.3, -1.3), 0.2)
     assert fast.enclosed is exact.enclosed is False
     assert len(fast.gaps) == len(exact.gaps) >= 1

@@ -2,7 +2,7 @@
 
 A world file is read into a :class:`~worldgen.core.scene.Scene`; a spec goes spec → geometry → SDF text → the same
 reader, so the picture shows what the written world holds, not what the spec meant. Every shape is cut through
-the robot's height band (:data:`worldgen.geometry.placement.SLICE_Z`, by :func:`worldgen.geometry.enclosure.footprints_between`):
+the robot's height band (:data:`worldgen.geometry.placement.SLICE_Z`, by :func:`worldgen.geometry.slices.footprints_between`):
 walls and obstacles are filled, lintels over doors and anything else above the robot are left out, so a doorway
 shows as a gap. A spec adds its openings (doors and windows, from the geometry) and its spawn pose.
 
@@ -150,7 +150,7 @@ def figure(pic: Picture, rays: Sequence[Ray] | None = None):
     from matplotlib.collections import LineCollection
     from matplotlib.figure import Figure
 
-    from .geometry.enclosure import footprints_between
+    from .geometry.slices import footprints_between
     from .geometry.placement import ROBOT_RADIUS, SLICE_Z
 
     with matplotlib.rc_context(_default_style()):

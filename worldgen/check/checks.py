@@ -169,7 +169,7 @@ def check_parse(scene: Scene) -> Outcome:
 def floor_under(scene: Scene, spawn: tuple[float, float, float]) -> tuple[float, dict]:
     """The floor height at the spawn point: 0, or the top of a floor slab under it no higher than a step the
     robot would be lifted onto (Gazebo's asphalt_plane is a 0.1 m box half sunk into the ground)."""
-    from ..geometry.enclosure import ground_under
+    from ..geometry.slices import ground_under
 
     height, label = ground_under(scene, spawn[:2], FLOOR_STEP)
     return height, {"floor_height_m": height, "floor": label}
@@ -201,8 +201,6 @@ def check_enclosed(scene: Scene, spawn: tuple[float, float, float], body: RobotB
 
 def _enclosed_verdict(found, spawn, body: RobotBody, metrics: dict, height: float, where: str, scene: Scene,
                       ground: float) -> Outcome:
-    from ..geometry.enclosure import MAX_GAP
-
     if found.inside is not None:
         metrics["spawn_inside"] = found.inside
         return Outcome([Finding(
@@ -232,7 +230,8 @@ def _enclosed_verdict(found, spawn, body: RobotBody, metrics: dict, height: floa
         return Outcome([Finding("enclosed", "error", message, where=where, fix=fix)], metrics)
     # The plane is open. Can the robot itself pass each gap? Its body spans the floor to its top, so a window
     # sill or an obstacle under the beams may hold it in while the beams still pass.
-    from ..geometry.enclosure import footprints_between, passage_width
+    from ..geometry.enclosure import passage_width
+    from ..geometry.slices import footprints_between
 
     band = footprints_between(scene, ground + CLIMB, ground + body.height, also=(height,))
     passes = [passage_width(band, gap) >= body.width for gap in found.gaps]
@@ -280,7 +279,7 @@ def check_spawn_clear(scene: Scene, spawn: tuple[float, float, float], body: Rob
     (above the climbing threshold) and the robot's top; how far the nearest is; room to turn in place."""
     import shapely
 
-    from ..geometry.enclosure import footprints_between
+    from ..geometry.slices import footprints_between
 
     robot = placed_footprint(body, spawn)
     prints = footprints_between(scene, ground + CLIMB, ground + body.height)

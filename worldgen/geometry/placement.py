@@ -67,7 +67,8 @@ def world_rooms(scene, radius: float = ROBOT_RADIUS["burger"]) -> Rooms:
     its free areas and which of them are closed rooms."""
     import shapely
 
-    from .enclosure import footprints_between, obstacle_union
+    from .enclosure import obstacle_union
+    from .slices import footprints_between
 
     prints = footprints_between(scene, *SLICE_Z)
     if not prints:

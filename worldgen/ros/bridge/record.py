@@ -15,7 +15,7 @@ def plot_png(world, trace: dict, result, person: dict | None = None) -> bytes:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from ...geometry.enclosure import footprints_between
+    from ...geometry.slices import footprints_between
 
     fig, ax = plt.subplots(figsize=(7, 7))
     for footprint in footprints_between(world.scene, 0.05, 0.3):
