@@ -8,6 +8,7 @@ Real rosmaster and rospy (Debian's); missing ROS packages skip, or fail under CI
 from __future__ import annotations
 
 import json
+import math
 import signal
 import subprocess
 import sys
@@ -67,6 +68,22 @@ def test_the_courses_stop_at_wall_passes(tag, course, tmp_path):
     assert m["path_length_m"] == pytest.approx(2.425 + 0.032 - m["final_front_distance_m"], abs=0.05)
     assert m["real_time_factor"] > 5
 
+
+
+def test_the_courses_node_and_drive_stop_at_the_same_place(tag, course):
+    """The generated stop_at_wall.py on the simulated robot and `worldgen drive` run one law: from the same spawn in
+    the same world they stop within 2 cm of each other (true distances from base_scan to the wall)."""
+    from bridgetools import SCAN_X, WALL_FACE
+
+    node = course / "lab_a_stop_at_wall" / "scripts" / "stop_at_wall.py"
+    ran = run([str(ROOM), str(node), "--rate", "max", "--duration", "30", "--format", "json"])
+    x, y, yaw = json.loads(ran.stdout)["metrics"]["final_pose"]
+    node_distance = WALL_FACE - (x + SCAN_X * math.cos(yaw))
+    driven = CliRunner().invoke(main, ["drive", str(ROOM), "--duration", "30", "--format", "json"])
+    assert driven.exit_code == 0, driven.output
+    drive_distance = json.loads(driven.stdout)["runs"][0]["final_distance"]
+    assert abs(y) < 0.02 and abs(yaw) < 0.05
+    assert abs(node_distance - drive_distance) < 0.02, (node_distance, drive_distance)
 
 def test_callback_node_reading_zero_for_no_return(tag):
     """A scan callback that publishes, ignoring 0 (the real LDS-01's no-return), with --lidar-no-hit zero."""
