@@ -28,8 +28,11 @@ FILES = ["good.yaml", "good.world", "pkg", "broken.yaml", "junk.bin", "empty", "
          "missing.yaml", "pkg/worlds", "/dev/null", "."]
 NUMBERS = ["0", "-1", "1e9", "-1e309", "nan", "inf", "-inf", "1,2", "1,2,3", "1,2,3,4", "1,2,3,4,5", ",", "",
            " ", "0x10", "1_0", "１", "٣", "--force", "-", "--", "1;2", "1 2"]
+# Derandomized (a fixed seed) unless WORLDGEN_FUZZ_RANDOM is set, so CI is repeatable; a fuzzing campaign sets it
+# with more WORLDGEN_FUZZ_EXAMPLES.
 SETTINGS = settings(max_examples=int(os.environ.get("WORLDGEN_FUZZ_EXAMPLES", "40")), deadline=None,
-                    derandomize=False, database=None, suppress_health_check=[HealthCheck.too_slow, HealthCheck.function_scoped_fixture])
+                    derandomize=not os.environ.get("WORLDGEN_FUZZ_RANDOM"), database=None,
+                    suppress_health_check=[HealthCheck.too_slow, HealthCheck.function_scoped_fixture])
 
 _TEXT = st.text(st.characters(blacklist_categories=("Cs",), blacklist_characters="\x00")
                 | st.sampled_from([chr(c) for c in range(0xDC80, 0xDD00, 7)]), max_size=16)

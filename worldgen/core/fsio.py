@@ -39,7 +39,14 @@ _FORCE_HINT = "pass --force to overwrite it, or choose another output with -o"
 
 
 def _as_bytes(data: FileData) -> bytes:
-    return data.encode("utf-8") if isinstance(data, str) else data
+    if isinstance(data, bytes):
+        return data
+    try:
+        return data.encode("utf-8")
+    except UnicodeEncodeError:   # a command-line value holding bytes that are not UTF-8 (surrogate escapes)
+        raise InputError("a value to be written holds bytes that are not UTF-8 text",
+                         hint="check the command's values for characters from a non-UTF-8 file name or locale") \
+            from None
 
 
 def _exists(p: str | Path) -> bool:

@@ -30,6 +30,7 @@ from ..core.resources import render_template
 
 # REP 144: lowercase letters, digits and underscores, starting with a letter.
 PACKAGE_NAME = re.compile(r"^[a-z][a-z0-9_]*$")
+BOOST_COMPONENT = re.compile(r"^[A-Za-z0-9_]+$")   # what find_package(Boost COMPONENTS …) names
 VERSION = re.compile(r"^(0|[1-9][0-9]*)\.(0|[1-9][0-9]*)\.(0|[1-9][0-9]*)$")
 # catkin_pkg's rule for an email address
 EMAIL = re.compile(r"^[-a-zA-Z0-9_%+]+(\.[-a-zA-Z0-9_%+]+)*@[-a-zA-Z0-9%]+(\.[-a-zA-Z0-9%]+)*\.[a-zA-Z]{2,}$")
@@ -112,6 +113,10 @@ def package_request(name: str, dependencies: Iterable[str] = (), *, sys_deps: It
     boost = list(dict.fromkeys(boost_comps))
     if boost and "boost" not in system:
         system.append("boost")
+    for comp in boost:
+        if not BOOST_COMPONENT.match(comp):
+            raise InputError(f"invalid boost component {comp!r}",
+                             hint="a component is a Boost library name, e.g. -b thread -b system")
     for dep in deps + system:
         if not DEPENDENCY.match(dep):
             raise InputError(f"invalid dependency name {dep!r}", hint="a dependency is a package or rosdep key")
