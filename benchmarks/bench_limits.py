@@ -205,7 +205,48 @@ def _deep(tmp: Path) -> List[str]:
             "-o", str(tmp / "out.world")]
 
 
+# Inputs that once were silently wrong or crashed (issue: hostile input): each must now get a verdict or one line.
+SMALL_ROOM = "name: hostile\nrooms:\n  - name: room\n    rect: {center: [0, 0], size: [5, 5]}\n"
+
+
+def _mesh_wall_world(tmp: Path, mesh: Path) -> Path:
+    return _write(tmp, "mesh.world", "<?xml version='1.0'?>\n<sdf version='1.6'><world name='w'><model name='m'>"
+                  "<static>1</static><link name='l'><collision name='c'><geometry><mesh><uri>"
+                  f"{mesh}</uri></mesh></geometry></collision></link></model></world></sdf>\n")
+
+
+def _latin1_obj(tmp: Path) -> List[str]:
+    corners = [(x, y, z) for x in (-2, 2) for y in (-0.1, 0.1) for z in (0, 2)]
+    faces = [(1, 2, 4), (1, 4, 3), (5, 7, 8), (5, 8, 6), (1, 5, 6), (1, 6, 2), (3, 4, 8), (3, 8, 7), (1, 3, 7),
+             (1, 7, 5), (2, 6, 8), (2, 8, 4)]
+    obj = tmp / "wall.obj"
+    obj.write_bytes("# Mauer für Raum 3, 20 °C\n".encode("latin-1") + b"".join(b"v %g %g %g\n" % c for c in corners)
+                    + b"".join(b"f %d %d %d\n" % f for f in faces))
+    return _validate(_mesh_wall_world(tmp, obj))
+
+
+def _unreadable_mesh(tmp: Path) -> List[str]:
+    bad = tmp / "broken.stl"
+    bad.write_bytes(b"\x00garbage" * 50)
+    return _validate(_mesh_wall_world(tmp, bad))
+
+
+def _non_utf8_preview(tmp: Path) -> List[str]:
+    spec = tmp / os.fsdecode(b"r\xe9sum\xe9.yaml")
+    spec.write_text(SMALL_ROOM)
+    return ["preview", str(spec), "-o", str(tmp / "out.png")]
+
+
+def _dangling_output(tmp: Path) -> List[str]:
+    (tmp / "hostile.world").symlink_to(tmp / "nowhere")
+    return ["build", str(_write(tmp, "spec.yaml", SMALL_ROOM)), "-o", str(tmp)]
+
+
 CASES = [
+    Case("mesh-obj-latin1", _latin1_obj, REFUSAL, (0, 1)),
+    Case("mesh-unreadable", _unreadable_mesh, REFUSAL, (0, 1)),
+    Case("preview-non-utf8-name", _non_utf8_preview, REFUSAL, (0,)),
+    Case("output-dangling-symlink", _dangling_output, REFUSAL, (2,)),
     Case("include-fanout-10x5", lambda t: _validate(include_fanout(t, 10, 5), "--model-path", str(t / "models")),
          REFUSAL),
     Case("include-depth-40", lambda t: _validate(include_fanout(t, 1, 40), "--model-path", str(t / "models")),
@@ -278,7 +319,7 @@ def run_case(case: Case, timeout: float) -> str:
         ok = rc is not None and rc in case.expect and seconds < case.bound[0] and mb < case.bound[1] and \
             not any("Traceback" in line for line in lines) and (rc != 2 or len(lines) == 1)
         status = "ok" if ok else ("TIMEOUT" if rc is None else "OVER")
-        return (f"{case.name:22} {status:7} exit {rc!s:4} {seconds:7.2f} s {mb:8.0f} MB   bound "
+        return (f"{case.name:24} {status:7} exit {rc!s:4} {seconds:7.2f} s {mb:8.0f} MB   bound "
                 f"{case.bound[0]:g} s {case.bound[1]:g} MB   {said[:110]}")
 
 
@@ -292,7 +333,7 @@ def main(argv: List[str]) -> int:
         print("\n".join(c.name for c in CASES))
         return 0
     chosen = [c for c in CASES if not argv or c.name in argv]
-    print(f"{'case':22} {'status':7} {'exit':9} {'time':>9} {'peak':>11}")
+    print(f"{'case':24} {'status':7} {'exit':9} {'time':>9} {'peak':>11}")
     failed = 0
     for case in chosen:
         line = run_case(case, timeout)
