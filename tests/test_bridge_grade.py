@@ -49,3 +49,23 @@ def test_a_folder_of_submissions_is_graded(tmp_path, monkeypatch):
     junit = grades.read_text()
     assert junit.count("<testcase") == 8 and 'failures="4"' in junit and 'name="worldgen run"' in junit
     no_leftovers(tag)
+
+
+def test_shards_of_a_class_cover_every_submission_once(tmp_path, monkeypatch):
+    """--shard K/N on a folder: the N shards' results are disjoint and together one per submission (these
+    submissions hold no node, so each fails at once without a simulation)."""
+    need_ros()
+    monkeypatch.setenv("ROS_HOME", str(tmp_path / "ros_home"))
+    runner = CliRunner()
+    names = [f"s{i}_lab" for i in range(5)]
+    for name in names:
+        assert runner.invoke(main, ["scaffold", name, "rospy", "-p", str(tmp_path / "subs")]).exit_code == 0
+    seen = []
+    for k in (1, 2):
+        result = runner.invoke(main, ["run", str(tmp_path / "subs"), "--task", "stop-at-wall", "--shard", f"{k}/2",
+                                      "--format", "json"])
+        assert result.exit_code == 1 and "Traceback" not in result.output, result.output
+        seen.append({r["path"].rstrip("/").rsplit("/", 1)[-1] for r in json.loads(result.stdout)["results"]})
+    assert not seen[0] & seen[1] and seen[0] | seen[1] == set(names) and len(seen[0]) == 3
+    bad = runner.invoke(main, ["run", str(tmp_path / "subs"), "--shard", "3/2"])
+    assert bad.exit_code == 2 and bad.stderr.startswith("worldgen: error: bad --shard value '3/2'")

@@ -29,6 +29,8 @@ from .drive import FiniteFloat
               help="With a folder of submissions: the world to grade them in (default: the class's room).")
 @click.option("-j", "--jobs", type=click.IntRange(1, 16), default=1, show_default=True,
               help="With a folder of submissions: runs at once, each with its own master.")
+@click.option("--shard", default=None, metavar="K/N",
+              help="A folder of submissions: grade only shard K of N (a stable share, for a CI matrix).")
 @click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True)
 @click.option("--junit", type=click.Path(path_type=Path, dir_okay=False), default=None, metavar="FILE",
               help="Also write a JUnit XML report.")
@@ -41,8 +43,8 @@ from .drive import FiniteFloat
 @click.option("--lidar-no-hit", type=click.Choice(["inf", "zero"]), default="inf", show_default=True,
               help="What a beam that hits nothing reads: inf as in Gazebo, 0 as the real LDS-01 driver.")
 @click.option("--force", is_flag=True, help="Overwrite existing --plot/--csv/--bag/--junit files.")
-def run(world, nodes, task, target, duration, rate, spawn, robot, folder_world, jobs, fmt, junit, plot, csv_path,
-        bag, lidar_no_hit, force):
+def run(world, nodes, task, target, duration, rate, spawn, robot, folder_world, jobs, shard, fmt, junit, plot,
+        csv_path, bag, lidar_no_hit, force):
     """Run NODE... (a .py file, PKG/TYPE, or a .launch file's nodes; `name:=value` after a node is its argument)
     on the simulated TurtleBot3 in WORLD, with a private ROS master, and report what the robot did. With --task,
     grade it: exit 0 pass, 1 fail.
@@ -53,15 +55,24 @@ def run(world, nodes, task, target, duration, rate, spawn, robot, folder_world, 
     from ..core.spawnpose import parse_spawn
     from ..ros.bridge.simcmd import parse_rate
 
+    from ..check.discover import parse_shard
+
     pace = parse_rate(rate)
+    shard_k_n = parse_shard(shard) if shard is not None else None
     spawn_pose = parse_spawn(spawn) if spawn is not None else None
     if world.is_dir() and not (world / "model.sdf").is_file() and not (world / "model.config").is_file():
         from ..ros.bridge.grade import grade_folder
 
         results = grade_folder(world, folder_world, task=task, target=target, duration=duration, rate=pace,
-                               spawn=spawn_pose, robot=robot, no_hit=lidar_no_hit, jobs=jobs, nodes=nodes)
+                               spawn=spawn_pose, robot=robot, no_hit=lidar_no_hit, jobs=jobs, nodes=nodes,
+                               shard=shard_k_n)
         _write_reports(results, fmt, junit)
         sys.exit(EXIT_OK if all(r.ok for r in results) else EXIT_FAILED)
+    if shard_k_n is not None:
+        from ..core.errors import InputError
+
+        raise InputError("--shard takes a folder of submissions", path=world,
+                         hint="give the folder holding one package per student, or leave out --shard")
     from ..ros.bridge.single import run_single
 
     result, text = run_single(world, nodes, task=task, target=target, duration=duration, rate=pace,

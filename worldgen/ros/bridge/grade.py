@@ -48,7 +48,9 @@ def node_of(submission: Path, task: str | None, names: list[str]) -> Path:
 
 
 def grade_folder(folder: Path, world_path: Path | None, *, task, target, duration, rate, spawn, robot, no_hit, jobs,
-                 nodes=()) -> list[Result]:
+                 nodes=(), shard: tuple[int, int] | None = None) -> list[Result]:
+    """One result per submission in ``folder`` (each run in its own master, ``jobs`` at once); with ``shard``
+    (K, N), only the K-th of N stable shares of the submissions (:func:`worldgen.check.discover.shard`)."""
     from ...core.resources import examples_dir
     from .report import result_of
     from .rosenv import import_rospy, node_python
@@ -64,6 +66,10 @@ def grade_folder(folder: Path, world_path: Path | None, *, task, target, duratio
     if not found:
         raise InputError("holds no submissions (no catkin packages, no folders)", path=folder,
                          hint="give the folder holding one folder or package per student")
+    if shard is not None:
+        from ...check.discover import shard as take_shard
+
+        found = take_shard(found, *shard, key=str)
     options = RunOptions(duration=parse_duration(duration, task), rate=rate, no_hit=no_hit, task=task, target=target,
                          person=person_loop(world.spawn) if task == "person-follow" else None)
 
