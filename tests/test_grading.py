@@ -308,3 +308,20 @@ def test_students_packages_of_the_same_name_each_start_their_own_world(tmp_path,
     launch = "my_world/launch/turtlebot3_in_ana_room.launch"
     assert {Path(p).relative_to(tmp_path / "class").parts[0]: ok for p, ok in verdicts.items() if p.endswith(launch)} \
         == {"s1": missing != "s1", "s2": missing != "s2"}
+
+
+def test_a_symlink_loop_in_a_class_folder_is_walked_once(tmp_path):
+    """A link back up the tree (a student's `ln -s .. up`) neither hangs the search nor counts a package twice; a
+    workspace's install space, holding copies of the manifests, is not searched."""
+    from worldgen.check.discover import find_packages
+    from worldgen.ros.bridge.grade import submissions
+
+    cli("scaffold", "lab_a", "rospy", "-p", tmp_path / "class" / "ana" / "src", check_code=0)
+    (tmp_path / "class" / "ana" / ".catkin_workspace").write_text("")
+    install = tmp_path / "class" / "ana" / "install" / "share" / "lab_a"
+    install.mkdir(parents=True)
+    (install / "package.xml").write_text((tmp_path / "class" / "ana" / "src" / "lab_a" / "package.xml").read_text())
+    (tmp_path / "class" / "ana" / "src" / "up").symlink_to(tmp_path / "class")
+    expected = [tmp_path / "class" / "ana" / "src" / "lab_a"]
+    assert find_packages(tmp_path / "class") == expected
+    assert submissions(tmp_path / "class") == expected

@@ -19,11 +19,10 @@ from pathlib import Path
 from typing import Callable, List, Sequence, Tuple, TypeVar
 
 from ..core.errors import InputError
-from ..core.packages import IGNORE_MARKER, MANIFEST
+from ..core.packages import MANIFEST, crawl
 
 WORLD_SUFFIXES = (".world", ".sdf")
 SPEC_FILE_SUFFIXES = (".yaml", ".yml", ".json")
-WORKSPACE_SPACES = ("build", "devel", "install", "log", "logs")   # a workspace's generated folders: never searched
 
 T = TypeVar("T")
 
@@ -62,30 +61,9 @@ def is_metapackage(folder: str | Path) -> bool:
     return root is not None and root.find("export/metapackage") is not None
 
 
-def _is_workspace(folder: Path) -> bool:
-    return (folder / "src").is_dir() and ((folder / ".catkin_workspace").exists() or
-                                          any((folder / d).is_dir() for d in WORKSPACE_SPACES))
-
-
 def find_packages(folder: Path) -> list[Path]:
     """The catkin packages under ``folder`` (a workspace: under its ``src/``), sorted by path."""
-    found: list[Path] = []
-    for dirpath, dirnames, filenames in os.walk(folder, followlinks=True):
-        here = Path(dirpath)
-        if IGNORE_MARKER in filenames:
-            dirnames.clear()
-            continue
-        if MANIFEST in filenames:
-            found.append(here)
-            dirnames.clear()
-            continue
-        if _is_workspace(here):
-            dirnames[:] = ["src"]
-            continue
-        dirnames[:] = sorted(d for d in dirnames if not d.startswith("."))
-        if len(found) > 10000:   # a folder as big as a disk: stop rather than walk forever
-            break
-    return sorted(set(found), key=lambda p: str(p))
+    return sorted(crawl(folder, workspaces=True, limit=10000), key=str)
 
 
 def find_loose(folder: Path) -> list[tuple[str, Path]]:

@@ -57,9 +57,20 @@ def ros_package_path(environ: Mapping[str, str] | None = None) -> list[Path]:
     return [Path(p) for p in environ.get("ROS_PACKAGE_PATH", "").split(os.pathsep) if p.strip()]
 
 
-def crawl(root: str | Path) -> list[Path]:
+WORKSPACE_SPACES = ("build", "devel", "install", "log", "logs")   # a catkin workspace's generated folders
+
+
+def is_workspace(folder: Path) -> bool:
+    """Whether ``folder`` is a catkin workspace: a ``src/`` beside ``.catkin_workspace`` or a generated space."""
+    return (folder / "src").is_dir() and ((folder / ".catkin_workspace").exists() or
+                                          any((folder / d).is_dir() for d in WORKSPACE_SPACES))
+
+
+def crawl(root: str | Path, *, workspaces: bool = False, limit: int | None = None) -> list[Path]:
     """The package folders under ``root`` in crawl order (see the module docstring); ``[root]`` when ``root``
-    is a package itself, ``[]`` when it is no folder."""
+    is a package itself, ``[]`` when it is no folder. With ``workspaces``, a catkin workspace is entered only
+    through its ``src/`` (its build, devel and install spaces hold copies of the manifests); past ``limit``
+    packages the walk stops (a folder as big as a disk)."""
     root = Path(root)
     if (root / MANIFEST).is_file():
         return [root]
@@ -74,6 +85,11 @@ def crawl(root: str | Path) -> list[Path]:
         if MANIFEST in filenames:
             found.append(Path(dirpath))
             dirnames.clear()   # a package holds no other packages
+            if limit is not None and len(found) > limit:
+                break
+            continue
+        if workspaces and is_workspace(Path(dirpath)):
+            dirnames[:] = ["src"]
             continue
         dirnames[:] = sorted(d for d in dirnames if not d.startswith("."))
     return found

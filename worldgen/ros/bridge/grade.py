@@ -23,10 +23,11 @@ MASTER_TRIES = 3
 
 
 def submissions(folder: Path) -> list[Path]:
-    """The catkin packages under ``folder`` (crawled as rospack does), else its subfolders; sorted."""
+    """The catkin packages under ``folder`` (crawled as rospack does; a workspace through its ``src/`` only),
+    else its subfolders; sorted."""
     from ...core.packages import crawl
 
-    found = [p for p in crawl(folder) if p != folder]
+    found = [p for p in crawl(folder, workspaces=True) if p != folder]
     if not found:
         found = [p for p in folder.iterdir() if p.is_dir() and not p.name.startswith(".")]
     return sorted(found)
