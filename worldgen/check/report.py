@@ -181,13 +181,13 @@ def to_text(results: list[Result]) -> str:
 
 # ----------------------------------------------------------------------------------------------------- JUnit
 
-def to_junit(results: list[Result]) -> bytes:
+def to_junit(results: list[Result], suite_name: str = "worldgen validate") -> bytes:
     """One ``<testsuite>`` with a ``<testcase classname=FILE name=CHECK>`` per file and check; errors are
     ``<failure>`` elements, warnings and notes go to ``<system-out>``, checks that did not run are ``<skipped>``."""
     from lxml import etree
 
     suites = etree.Element("testsuites")
-    suite = etree.SubElement(suites, "testsuite", name="worldgen validate")
+    suite = etree.SubElement(suites, "testsuite", name=suite_name)
     tests = failures = skipped = 0
     for r in results:
         by_check: dict[str, list[Finding]] = {c: [] for c in ("parse", *r.checks)}

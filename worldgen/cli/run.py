@@ -88,7 +88,7 @@ def _write_reports(results, fmt: str, junit: Path | None) -> None:
     from ..ros.bridge.report import folder_text
 
     if junit is not None:
-        write_file(junit, to_junit(results).replace(b'name="worldgen validate"', b'name="worldgen run"'), force=True)
+        write_file(junit, to_junit(results, suite_name="worldgen run"), force=True)
     click.echo(to_json(results) if fmt == "json" else folder_text(results), nl=False)
 
 

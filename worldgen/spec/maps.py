@@ -28,7 +28,7 @@ from ..core.errors import SpecError
 from ..core.inputs import MAX_SPEC_BYTES, read_text_capped
 from . import values
 from .grid import plan_grid
-from .messages import describe, describe_sized, did_you_mean, metres, suggest_name
+from .messages import describe_sized, did_you_mean, metres, suggest_name
 from .model import LIMIT, TOP_KEYS, Obstacle, Segment, Spec, WallStyle
 from .nodes import Node, compose
 from .values import Source
@@ -98,7 +98,7 @@ def read_map_yaml(src: Source, root: Node) -> MapFile:
 
     node = keys["image"]
     if not isinstance(node.value, str) or not node.value.strip():
-        src.fail(f"image must be the image file's name, not {_what(node.value)}", node.line,
+        src.fail(f"image must be the image file's name, not {describe_sized(node.value)}", node.line,
                  hint="e.g. image: map.pgm (relative to this file)")
     image = yaml_path.parent / node.value   # an absolute path stays as it is, as map_server reads it
     if not image.is_file():
@@ -111,7 +111,7 @@ def read_map_yaml(src: Source, root: Node) -> MapFile:
     resolution = values.length(src, keys["resolution"], "the map's resolution")
     origin = keys["origin"]
     if not isinstance(origin.value, list) or len(origin.value) not in (2, 3):
-        src.fail(f"the map's origin must be [x, y, yaw], not {_what(origin.value)}", origin.line,
+        src.fail(f"the map's origin must be [x, y, yaw], not {describe_sized(origin.value)}", origin.line,
                  hint="e.g. origin: [-10.0, -10.0, 0.0]: where the image's bottom-left corner lies, in metres")
     x = values.coordinate(src, origin.value[0], "x of the map's origin")
     y = values.coordinate(src, origin.value[1], "y of the map's origin")
@@ -126,7 +126,7 @@ def read_map_yaml(src: Source, root: Node) -> MapFile:
     if "negate" in keys:
         value = keys["negate"].value
         if value not in (0, 1) or isinstance(value, float):   # True and False are 1 and 0
-            src.fail(f"negate must be 0 or 1, not {_what(value)}", keys["negate"].line,
+            src.fail(f"negate must be 0 or 1, not {describe_sized(value)}", keys["negate"].line,
                      hint="0: dark pixels are walls (map_saver's maps); 1: light pixels are walls")
         negate = bool(value)
     thresholds = {}
@@ -325,7 +325,7 @@ def map_spec(src: Source, root: Node) -> Spec:
 def spec_map_parts(src: Source, node: Node, base: WallStyle) -> tuple[list[Segment], list[Obstacle]]:
     """A spec's ``map: FILE``: the map's walls, with the spec's wall height and material."""
     if not isinstance(node.value, str) or not node.value.strip():
-        src.fail(f"map must name a map_server YAML file, not {_what(node.value)}", node.line,
+        src.fail(f"map must name a map_server YAML file, not {describe_sized(node.value)}", node.line,
                  hint="e.g. map: lab.yaml (relative to this spec), the file map_saver wrote")
     path = Path(src.path or ".").parent / node.value
     if path.suffix.lower() in IMAGE_SUFFIXES:
@@ -338,5 +338,3 @@ def spec_map_parts(src: Source, node: Node, base: WallStyle) -> tuple[list[Segme
     return map_parts(load_map_yaml(path), base, node.line)
 
 
-def _what(value: object) -> str:
-    return describe_sized(value) if isinstance(value, list) else describe(value)
