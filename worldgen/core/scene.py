@@ -57,6 +57,7 @@ class Scene:
     shapes: list[Shape] = field(default_factory=list)
     findings: list[Finding] = field(default_factory=list)
     models: list[str] = field(default_factory=list)
+    model_poses: dict[str, tuple[float, ...]] = field(default_factory=dict)   # name → (x, y, z, qx, qy, qz, qw)
 
     def save(self, path: str | Path) -> None:
         """Pickle the scene to ``path``: how a parent hands it to a simulator child (see :meth:`load`)."""

@@ -14,7 +14,8 @@ from .launch import NodeRef
 @dataclass(frozen=True)
 class RobotSpawn:
     """One ``gazebo_ros/spawn_model`` node: its full name, the ``-model`` name, the ``-param`` it reads the
-    description from, the robot model (burger/waffle/…) when known and the pose (None when unresolved)."""
+    description from, the robot model (burger/waffle/…) when known and the pose (None when unresolved), and
+    what a simulator needs to give the robot its own topics and frames."""
 
     node: str
     model_name: str | None
@@ -22,6 +23,10 @@ class RobotSpawn:
     robot: str | None
     pose: Pose | None
     line: int | None = None
+    ns: str = "/"                        # the namespace spawn_model runs in: the robot's plugins' namespace
+    tf_prefix: str | None = None         # the tf_prefix parameter found from ns upwards (None: none set)
+    xacro_args: tuple = ()               # name:=value mappings of the description's xacro command
+    robot_namespace: str | None = None   # spawn_model's -robot_namespace, when given
 
 
 @dataclass

@@ -259,8 +259,31 @@ def read_spawn(read: LaunchRead, node: NodeRef, args: str, errors: List[Unresolv
                             scope, line)
             pose = None
     robot = robot_of(read, param, node.ns)
+    namespace = next((words[i + 1] for i, w in enumerate(words[:-1]) if w == "-robot_namespace"), None)
     read.info.robots.append(RobotSpawn(node.full_name, model_name, param, robot,
-                                       None if pose is None else (pose[0], pose[1], pose[2], pose[3]), line))
+                                       None if pose is None else (pose[0], pose[1], pose[2], pose[3]), line,
+                                       node.ns or "/", tf_prefix_of(read, node.ns), xacro_args(read, param, node.ns),
+                                       namespace))
+
+
+def tf_prefix_of(read: LaunchRead, ns: str) -> str | None:
+    """The ``tf_prefix`` parameter a node in ``ns`` finds searching upwards (ROS's searchParam), if any."""
+    parts = [p for p in (ns or "/").split("/") if p]
+    for depth in range(len(parts), -1, -1):
+        key = "/" + "/".join(parts[:depth] + ["tf_prefix"])
+        if key in read.params and "\0" not in read.params[key]:
+            return read.params[key].strip()
+    return None
+
+
+def xacro_args(read: LaunchRead, param: str | None, ns: str) -> tuple:
+    """The ``name:=value`` arguments of the xacro command the description ``param`` is made with."""
+    if not param:
+        return ()
+    text = read.params.get(param if param.startswith("/") else join_ns(ns, param)) or ""
+    if "xacro" not in text:
+        return ()
+    return tuple(w for w in text.split() if ":=" in w and not w.startswith("__") and "\0" not in w)
 
 
 def robot_of(read: LaunchRead, param: str | None, ns: str) -> str | None:

@@ -17,6 +17,9 @@ def emit_models(ctx: ReadContext, models: List[Model], scene: Scene) -> None:
     """Each top-level model's name and shapes into ``scene``; a finding for a non-static model with shapes."""
     for model in models:
         scene.models.append(model.name)
+        world = model.world if model.world is not None else model.pose
+        scene.model_poses[model.name] = (float(world[0, 3]), float(world[1, 3]), float(world[2, 3]),
+                                         *poses.matrix_quat(world[:3, :3]))
         before = len(scene.shapes)
         emit_model(model, poses.IDENTITY, model.name, scene.shapes)
         if not model.static and len(scene.shapes) > before:

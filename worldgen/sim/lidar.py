@@ -60,10 +60,11 @@ def beam_directions(params: LidarParams) -> np.ndarray:
 
 
 def cast_scan(client: int, params: LidarParams, position, orientation, *, no_hit: str = "inf",
-              rng: np.random.Generator | None = None, time: float = 0.0) -> Scan:
+              rng: np.random.Generator | None = None, time: float = 0.0, mask: int = SCENE_GROUP) -> Scan:
     """Cast one scan from the sensor pose (world ``position``, quaternion ``orientation``).
 
-    ``rng`` adds the sensor's Gaussian noise (None: no noise, still quantised).
+    ``rng`` adds the sensor's Gaussian noise (None: no noise, still quantised); ``mask`` is the collision mask the
+    rays see (the scene alone by default; a robot's own LiDAR also sees the other robots).
     """
     if no_hit not in NO_HIT:
         raise ValueError(f"no_hit must be one of {sorted(NO_HIT)}, not {no_hit!r}")
@@ -72,7 +73,7 @@ def cast_scan(client: int, params: LidarParams, position, orientation, *, no_hit
     origin = np.asarray(position, float)
     starts = origin + dirs * params.range_min
     ends = origin + dirs * params.range_max
-    results = pb.rayTestBatch(starts, ends, collisionFilterMask=SCENE_GROUP, physicsClientId=client)
+    results = pb.rayTestBatch(starts, ends, collisionFilterMask=mask, physicsClientId=client)
     span = params.range_max - params.range_min
     hit = np.fromiter((r[0] >= 0 for r in results), bool, len(results))
     fractions = np.fromiter((r[2] for r in results), float, len(results))

@@ -20,10 +20,33 @@ from ..core.scene import Scene, Shape
 COMPOUND_LIMIT = 16            # children per createCollisionShapeArray that pybullet keeps
 MESH_FACES_PER_SHAPE = 30_000  # ≤ 90,000 vertices per shape; pybullet refuses somewhere above 100,000
 # Collision filter bits. Bullet pairs two objects when each one's group meets the other's mask; a ray (whose
-# group is bit 0) hits objects whose group meets the ray's mask and whose mask has bit 0. So scene bodies never
-# pair with each other, both pair with the robot, and rays cast with mask SCENE_GROUP skip the robot.
+# group is bit 0) hits objects whose group meets the ray's mask and whose mask has bit 0. So static scene bodies
+# never pair with each other; they, bodies that move under physics (spawned models) and every robot pair with
+# each robot; robot i (group ROBOT_GROUP << i) pairs with every other robot; rays cast with mask SCENE_GROUP see
+# only the scene, and robot i's LiDAR (ray_mask(i)) sees the scene, moving bodies and the other robots.
 RAY_GROUP, SCENE_GROUP, ROBOT_GROUP = 0b001, 0b010, 0b100
-SCENE_MASK, ROBOT_MASK = RAY_GROUP | ROBOT_GROUP, SCENE_GROUP
+MAX_ROBOTS = 16
+ALL_ROBOTS = sum(ROBOT_GROUP << i for i in range(MAX_ROBOTS))
+DYNAMIC_GROUP = ROBOT_GROUP << MAX_ROBOTS
+SCENE_MASK = RAY_GROUP | ALL_ROBOTS | DYNAMIC_GROUP
+DYNAMIC_MASK = RAY_GROUP | SCENE_GROUP | ALL_ROBOTS | DYNAMIC_GROUP
+
+
+def robot_group(slot: int) -> int:
+    """The collision group of robot ``slot`` (0 … MAX_ROBOTS − 1)."""
+    if not 0 <= slot < MAX_ROBOTS:
+        raise ValueError(f"at most {MAX_ROBOTS} robots in one simulation")
+    return ROBOT_GROUP << slot
+
+
+def robot_mask(slot: int) -> int:
+    """What robot ``slot`` collides with (and that other robots' LiDARs see it)."""
+    return RAY_GROUP | SCENE_GROUP | DYNAMIC_GROUP | (ALL_ROBOTS & ~robot_group(slot))
+
+
+def ray_mask(slot: int) -> int:
+    """What robot ``slot``'s LiDAR sees: everything but that robot."""
+    return SCENE_GROUP | DYNAMIC_GROUP | (ALL_ROBOTS & ~robot_group(slot))
 SURFACE_FRICTION = 1.0         # Gazebo's default μ for surfaces without a <surface> block
 
 
@@ -70,19 +93,7 @@ def load_scene(client: int, scene: Scene, add_ground: bool = True) -> SceneBodie
         body = _static_body(client, sid, shape.position, shape.orientation)
         bodies.shapes[body] = [shape]
         bodies.planes.add(body)
-    primitives = sorted((s for s in scene.shapes if s.kind in ("box", "cylinder", "sphere") and _usable(s)),
-                        key=_cell)
-    for start in range(0, len(primitives), COMPOUND_LIMIT):
-        chunk = primitives[start:start + COMPOUND_LIMIT]
-        sid = pb.createCollisionShapeArray(
-            shapeTypes=[_GEOM[s.kind] for s in chunk],
-            halfExtents=[[v / 2 for v in s.size] if s.kind == "box" else [0.0, 0.0, 0.0] for s in chunk],
-            radii=[float(s.radius or 0.0) for s in chunk],
-            lengths=[float(s.length or 0.0) for s in chunk],
-            collisionFramePositions=[list(s.position) for s in chunk],
-            collisionFrameOrientations=[list(s.orientation) for s in chunk],
-            physicsClientId=client)
-        bodies.shapes[_static_body(client, sid, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))] = chunk
+    bodies.shapes.update(primitive_bodies(client, scene.shapes))
     for shape in scene.shapes:
         if shape.kind == "mesh" and shape.vertices is not None and shape.faces is not None:
             for vertices, faces in _mesh_pieces(np.asarray(shape.vertices, float), np.asarray(shape.faces, int)):
@@ -93,7 +104,26 @@ def load_scene(client: int, scene: Scene, add_ground: bool = True) -> SceneBodie
     return bodies
 
 
-_GEOM = {"box": pb.GEOM_BOX, "cylinder": pb.GEOM_CYLINDER, "sphere": pb.GEOM_SPHERE}
+def primitive_bodies(client: int, shapes) -> dict[int, list[Shape]]:
+    """The boxes, cylinders and spheres among ``shapes`` as static compound bodies (at most
+    :data:`COMPOUND_LIMIT` children each, grouped by floor cell; base at the world origin): body → its shapes."""
+    made = {}
+    primitives = sorted((s for s in shapes if s.kind in GEOM and _usable(s)), key=_cell)
+    for start in range(0, len(primitives), COMPOUND_LIMIT):
+        chunk = primitives[start:start + COMPOUND_LIMIT]
+        sid = pb.createCollisionShapeArray(
+            shapeTypes=[GEOM[s.kind] for s in chunk],
+            halfExtents=[[v / 2 for v in s.size] if s.kind == "box" else [0.0, 0.0, 0.0] for s in chunk],
+            radii=[float(s.radius or 0.0) for s in chunk],
+            lengths=[float(s.length or 0.0) for s in chunk],
+            collisionFramePositions=[list(s.position) for s in chunk],
+            collisionFrameOrientations=[list(s.orientation) for s in chunk],
+            physicsClientId=client)
+        made[_static_body(client, sid, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))] = chunk
+    return made
+
+
+GEOM = {"box": pb.GEOM_BOX, "cylinder": pb.GEOM_CYLINDER, "sphere": pb.GEOM_SPHERE}
 CELL = 2.0   # m: primitives are grouped by floor cell, so each compound is compact and the robot meets few
 
 

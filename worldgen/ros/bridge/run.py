@@ -40,6 +40,7 @@ class RunOptions:
     target: float | None = None
     bag: Path | None = None
     person: dict | None = None
+    robot_ns: str | None = None      # the robot graded, of several (its namespace or model name)
 
 
 @dataclass
@@ -50,6 +51,18 @@ class Outcome:
     findings: list[Finding] = field(default_factory=list)
     trace: dict = field(default_factory=dict)
     logs: dict[str, str] = field(default_factory=dict)
+
+
+def with_gazebo_msgs(env: dict[str, str]) -> dict[str, str]:
+    """``env`` with worldgen's generated gazebo_msgs on ``PYTHONPATH`` when the system has none (the simulator
+    and the students' nodes both import it; see :mod:`.gazebo_types`)."""
+    from .gazebo_types import gazebo_msgs_path
+
+    folder = gazebo_msgs_path()
+    if folder is None:
+        return env
+    parts = [folder] + [p for p in env.get("PYTHONPATH", "").split(os.pathsep) if p and p != folder]
+    return dict(env, PYTHONPATH=os.pathsep.join(parts))
 
 
 def _bridge_env(env: dict[str, str]) -> dict[str, str]:
@@ -69,12 +82,13 @@ def run_nodes(world: World, nodes: list[NodeSpec], options: RunOptions, base_env
     with tempfile.TemporaryDirectory(prefix="worldgen_run_") as tmp_name, Supervisor() as supervisor:
         tmp = Path(tmp_name)
         _, uri = start_master(supervisor, None, dict(base_env or os.environ), log=tmp / "master.log")
-        env = ros_env(base_env, uri, tmp / "ros_home")
+        env = with_gazebo_msgs(ros_env(base_env, uri, tmp / "ros_home"))
         set_param(uri, "/use_sim_time", True)
         trace_file = tmp / "trace.json"
         config = write_config(tmp, world, rate=options.rate, duration=options.duration, no_hit=options.no_hit,
                               trace=str(trace_file), bag=str(options.bag) if options.bag else None,
-                              start_param=START_PARAM, person=options.person, set_sim_time=False)
+                              start_param=START_PARAM, person=options.person, set_sim_time=False,
+                              graded=options.robot_ns)
         simulator = supervisor.start("simulator", [sys.executable, "-m", "worldgen.ros.bridge.node", str(config)],
                                      _bridge_env(env), log=tmp / "simulator.log")
         _wait_for_simulator(simulator, uri)

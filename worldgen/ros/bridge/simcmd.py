@@ -13,11 +13,13 @@ from urllib.parse import urlparse
 
 from ...core.errors import InputError
 from .master import master_answers, start_master
+from .gazebo_types import gazebo_msgs_path
 from .supervise import Supervisor
 from .world import World, write_config
 
 DEFAULT_URI = "http://localhost:11311"
-TOPICS = "/clock /scan /odom /tf /tf_static /joint_states /imu; subscribes /cmd_vel; services /gazebo/reset_world"
+TOPICS = ("/clock /scan /odom /tf /tf_static /joint_states /imu /gazebo/model_states; subscribes /cmd_vel; "
+          "Gazebo's services (/gazebo/get_model_state, spawn_sdf_model, reset_world …)")
 
 
 def sim(world: World, *, rate: float, duration: float | None, no_hit: str,
@@ -36,6 +38,11 @@ def sim(world: World, *, rate: float, duration: float | None, no_hit: str,
             _, uri = start_master(supervisor, port, env)
             say(f"worldgen sim: started a ROS master at {uri} (stopped on exit)")
         env["ROS_MASTER_URI"] = uri
+        generated = gazebo_msgs_path()
+        if generated is not None:
+            env["PYTHONPATH"] = os.pathsep.join(p for p in (generated, env.get("PYTHONPATH")) if p)
+            say(f"worldgen sim: this system has no gazebo_msgs; for nodes that import it: "
+                f"export PYTHONPATH={generated}:$PYTHONPATH")
         config = write_config(Path(tmp), world, rate=rate, duration=duration, no_hit=no_hit, trace=None,
                               set_sim_time=True)
         root = str(Path(__file__).resolve().parents[3])
@@ -43,8 +50,11 @@ def sim(world: World, *, rate: float, duration: float | None, no_hit: str,
         child = supervisor.start("simulator", [sys.executable, "-m", "worldgen.ros.bridge.node", str(config)], env,
                                  show_errors=True)
         x, y, yaw = world.spawn
-        say(f"worldgen sim: {world.robot} at ({x:g}, {y:g}, {yaw:g}) in {world.path}, "
-            f"{'as fast as it goes' if rate <= 0 else f'{rate:g}x real time'}; publishing {TOPICS}. Ctrl-C stops.")
+        robots = [f"{r['ns']}: {r['robot']} at ({r['spawn'][0]:g}, {r['spawn'][1]:g}, {r['spawn'][2]:g})"
+                  for r in world.robots] or [f"{world.robot} at ({x:g}, {y:g}, {yaw:g})"]
+        say(f"worldgen sim: {'; '.join(robots)} in {world.path}, "
+            f"{'as fast as it goes' if rate <= 0 else f'{rate:g}x real time'}; publishing {TOPICS}"
+            f"{' in each namespace' if world.robots else ''}. Ctrl-C stops.")
         try:
             while child.running:
                 time.sleep(0.1)

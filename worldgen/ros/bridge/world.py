@@ -5,7 +5,7 @@ where it came from; and the node's config file for one run."""
 from __future__ import annotations
 
 import json
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from ...core.errors import InputError, WorldFileError
@@ -20,6 +20,7 @@ class World:
     robot_source: str
     spawn: tuple[float, float, float]
     spawn_source: str
+    robots: list[dict] = field(default_factory=list)   # several robots: name, ns, robot, spawn, tf_prefix, mappings
 
 
 def load_world(path: str | Path, *, spawn=None, robot: str | None = None, launch: str | Path | None = None,
@@ -35,8 +36,9 @@ def load_world(path: str | Path, *, spawn=None, robot: str | None = None, launch
     kind = input_kind(path)
     found_robot, found_spawn, robot_src, spawn_src = None, None, "default", "the world's origin"
     world_file = path
+    robots: list[dict] = []
     if kind == "launch":
-        world_file, found_robot, found_spawn = _from_launch(path)
+        world_file, found_robot, found_spawn, robots = _from_launch(path)
         robot_src = spawn_src = f"launch file {path}"
     elif kind == "package":
         raise InputError("is a catkin package folder, not a world", path=path,
@@ -46,7 +48,7 @@ def load_world(path: str | Path, *, spawn=None, robot: str | None = None, launch
         found_robot, found_spawn = spec_robot["model"], tuple(spec_robot["spawn"])
         robot_src = spawn_src = f"spec {path}"
     if launch is not None:
-        _, launch_robot, launch_spawn = _from_launch(Path(launch), need_world=False)
+        _, launch_robot, launch_spawn, robots = _from_launch(Path(launch), need_world=False)
         if launch_robot:
             found_robot, robot_src = launch_robot, f"launch file {launch}"
         if launch_spawn:
@@ -60,7 +62,11 @@ def load_world(path: str | Path, *, spawn=None, robot: str | None = None, launch
 
         file = robot_file(found_robot)   # InputError for an unknown model or missing file
         found_robot = found_robot if found_robot in MODELS else str(file)
-    return World(path, scene, found_robot or "burger", robot_src, tuple(found_spawn or (0.0, 0.0, 0.0)), spawn_src)
+    if robots and (robot is not None or spawn is not None):   # --robot/--spawn: the first robot's
+        robots[0] = dict(robots[0], robot=found_robot or robots[0]["robot"],
+                         spawn=list(found_spawn or robots[0]["spawn"]))
+    return World(path, scene, found_robot or "burger", robot_src, tuple(found_spawn or (0.0, 0.0, 0.0)), spawn_src,
+                 robots)
 
 
 def _from_launch(path: Path, need_world: bool = True):
@@ -76,14 +82,36 @@ def _from_launch(path: Path, need_world: bool = True):
         raise WorldFileError(f"the world this launch file starts cannot be found: {info.world_ref or '(none)'}",
                              path=path, hint="is its package on ROS_PACKAGE_PATH? or give the world file itself "
                                              "and --launch THIS_FILE")
-    return world, info.model if info.model in ("burger", "waffle", "waffle_pi") else None, spawn
+    return world, info.model if info.model in ("burger", "waffle", "waffle_pi") else None, spawn, _robots(info)
+
+
+def _robots(info) -> list[dict]:
+    """Each robot a launch file spawns in a namespace of its own, or more than one (empty for the class's one
+    robot in the global namespace): what the simulator node's config lists under ``robots``."""
+    spawns = [r for r in info.robots if r.pose is not None]
+    if not spawns or (len(spawns) == 1 and (spawns[0].robot_namespace or spawns[0].ns).strip("/") == ""):
+        return []
+    robots, names = [], set()
+    for i, r in enumerate(spawns):
+        ns = "/" + (r.robot_namespace if r.robot_namespace is not None else r.ns).strip("/")
+        model = r.robot if r.robot in ("burger", "waffle", "waffle_pi") else (info.model or "burger")
+        name = r.model_name or (ns.strip("/") or f"turtlebot3_{model}")
+        if name in names:
+            name = f"{name}_{i}"
+        names.add(name)
+        mappings = dict(a.split(":=", 1) for a in r.xacro_args)
+        robots.append({"name": name, "ns": ns, "robot": model, "spawn": [r.pose[0], r.pose[1], r.pose[3]],
+                       "tf_prefix": r.tf_prefix, "mappings": mappings or None})
+    return robots
 
 
 def write_config(folder: Path, world: World, **options) -> Path:
     """The simulator node's config (and the pickled scene) in ``folder``; see :func:`.node.main`."""
     scene_file = folder / "scene.pickle"
     world.scene.save(scene_file)
-    config = {"scene_file": str(scene_file), "robot": world.robot, "spawn": list(world.spawn), **options}
+    config = {"scene_file": str(scene_file), "robot": world.robot, "spawn": list(world.spawn),
+              "robots": [dict(r, spawn=list(r["spawn"])) for r in world.robots] or None, **options}
+
     path = folder / "sim.json"
     path.write_text(json.dumps(config), encoding="utf-8")
     return path
