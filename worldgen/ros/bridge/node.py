@@ -194,6 +194,12 @@ class Bridge:
                     robots=[t.result() for t in self.robots] + self.removed)
 
 
+def model_name(robot: str | None) -> str:
+    """The model name a robot gets in Gazebo's lists: ``turtlebot3_burger`` as the class's launch files spawn it."""
+    robot = robot or "burger"
+    return f"turtlebot3_{robot}" if robot in ("burger", "waffle", "waffle_pi") else "turtlebot3"
+
+
 def wait_for_start(rospy, bridge: Bridge, param: str) -> None:
     """Hold simulated time at 0 (publishing /clock) until ``param`` is true on the master: the nodes under
     test are up, as with Gazebo started paused and then unpaused."""
@@ -257,9 +263,9 @@ class Governor:
     are falling behind, and the pace drops below what was achieved; when nothing waits, it rises again, up to no
     limit. (A node that lags reacts late in simulated time, which Gazebo at real time never shows.)"""
 
-    def __init__(self, rate: float, pids: list[int]):
+    def __init__(self, rate: float, pids: list[int], sim_t: float = 0.0):
         self.rate, self.pids = rate, list(pids)
-        self.anchor_wall, self.anchor_sim = time.monotonic(), 0.0
+        self.anchor_wall, self.anchor_sim = time.monotonic(), sim_t
         self.limit = rate if rate > 0 else None   # None: no limit
         self.last_check = self.anchor_wall
         self.previous = 0
@@ -294,7 +300,7 @@ def _steps(rospy, bridge: Bridge, rate: float, end_step: int | None, pids: list[
         if bridge.paused:
             bridge.publish_clock()   # the clock stands still
             time.sleep(PAUSED_CLOCK)
-            governor = Governor(rate, pids)
+            governor = Governor(rate, pids, s.t)   # paced afresh from where it stopped
             continue
         if person is not None:
             s.move_body(person[0], *bridge.person_xy(s.t + dt))
@@ -338,7 +344,7 @@ def main(argv: list[str]) -> int:
         first = (config.get("robots") or [{}])[0]
         session = Session(Scene.load(config["scene_file"]), config.get("robot") or "burger",
                           tuple(config["spawn"]), no_hit=config.get("no_hit", "inf"), seed=config.get("seed", 0),
-                          mappings=first.get("mappings"), name=first.get("name") or "turtlebot3")
+                          mappings=first.get("mappings"), name=first.get("name") or model_name(config.get("robot")))
     except WorldgenError as err:
         print(f"worldgen: error: {err}", file=sys.stderr, flush=True)
         return 2
