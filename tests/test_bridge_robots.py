@@ -87,3 +87,34 @@ def test_two_robots_each_have_their_topics_frames_and_see_each_other(sim):
                                   "/tb3_1": ["tb3_1/odom", "tb3_1/base_footprint"]}
     assert got["scan_frames"] == {"/tb3_0": "tb3_0/base_scan", "/tb3_1": "tb3_1/base_scan"}
     assert ["tb3_1/odom", "tb3_1/base_footprint"] in got["tf"]
+
+
+def test_run_grades_the_chosen_robot_and_reports_every_robot(tmp_path):
+    """A node in /tb3_1 drives that robot into tb3_0: graded as tb3_1, both robots reported, the bump seen."""
+    need_ros()
+    launch = two_robot_launch(tmp_path)
+    env = ros_env(tmp_path)
+    env["WORLDGEN_CACHE"] = str(tmp_path / "cache")
+    out = subprocess.run([sys.executable, "-m", "worldgen", "run", str(launch), str(NODES / "drive_into_wall.py"),
+                          "__ns:=/tb3_1", "--robot-ns", "tb3_1", "--duration", "6", "--rate", "max",
+                          "--format", "json"], env=env, capture_output=True, text=True, timeout=300)
+    assert out.returncode == 0, out.stderr
+    got = json.loads(out.stdout)
+    robots = got["metrics"]["robots"]
+    assert set(robots) == {"/tb3_0", "/tb3_1"} and got["metrics"]["graded_robot"] == "/tb3_1"
+    assert got["spawn"][:2] == [0.5, 0.0]
+    assert robots["/tb3_0"]["cmd_vel_messages"] == 0 and robots["/tb3_1"]["cmd_vel_messages"] > 10
+    assert got["metrics"]["final_pose"] == robots["/tb3_1"]["final_pose"]
+    assert got["metrics"]["final_pose"][0] < 0.35   # it drove towards -x, into the other robot
+    assert any(c["shape"] == "tb3_0" for c in got["metrics"]["contacts"])
+    no_leftovers(env)
+
+
+def test_an_unknown_robot_namespace_is_one_line_before_anything_starts(tmp_path):
+    need_ros()
+    launch = two_robot_launch(tmp_path)
+    env = ros_env(tmp_path)
+    out = subprocess.run([sys.executable, "-m", "worldgen", "run", str(launch), str(NODES / "drive_into_wall.py"),
+                          "--robot-ns", "tb3_7"], env=env, capture_output=True, text=True, timeout=120)
+    assert out.returncode == 2
+    assert out.stderr.count("\n") == 1 and "tb3_7" in out.stderr and "/tb3_0, /tb3_1" in out.stderr

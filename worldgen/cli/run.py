@@ -25,6 +25,8 @@ from .drive import FiniteFloat
 @click.option("--spawn", default=None, metavar="X,Y[,YAW]",
               help="Spawn pose in metres and radians. Default: the launch file's, else the spec's, else 0,0,0.")
 @click.option("--robot", default=None, metavar="burger|waffle|waffle_pi|FILE", help="Robot model or description.")
+@click.option("--robot-ns", default=None, metavar="NS",
+              help="With several robots (a launch file's <group ns>s): the one to grade. Every robot is reported.")
 @click.option("--world", "folder_world", type=click.Path(path_type=Path), default=None, metavar="WORLD",
               help="With a folder of submissions: the world to grade them in (default: the class's room).")
 @click.option("-j", "--jobs", type=click.IntRange(1, 16), default=1, show_default=True,
@@ -43,7 +45,7 @@ from .drive import FiniteFloat
 @click.option("--lidar-no-hit", type=click.Choice(["inf", "zero"]), default="inf", show_default=True,
               help="What a beam that hits nothing reads: inf as in Gazebo, 0 as the real LDS-01 driver.")
 @click.option("--force", is_flag=True, help="Overwrite existing --plot/--csv/--bag/--junit files.")
-def run(world, nodes, task, target, duration, rate, spawn, robot, folder_world, jobs, shard, fmt, junit, plot,
+def run(world, nodes, task, target, duration, rate, spawn, robot, robot_ns, folder_world, jobs, shard, fmt, junit, plot,
         csv_path, bag, lidar_no_hit, force):
     """Run NODE... (a .py file, PKG/TYPE, or a .launch file's nodes; `name:=value` after a node is its argument)
     on the simulated TurtleBot3 in WORLD, with a private ROS master, and report what the robot did. With --task,
@@ -77,7 +79,7 @@ def run(world, nodes, task, target, duration, rate, spawn, robot, folder_world, 
 
     result, text = run_single(world, nodes, task=task, target=target, duration=duration, rate=pace,
                               spawn=spawn_pose, robot=robot, no_hit=lidar_no_hit, fmt=fmt, junit=junit, plot=plot,
-                              csv_path=csv_path, bag=bag, force=force)
+                              csv_path=csv_path, bag=bag, force=force, robot_ns=robot_ns)
     click.echo(text, nl=False)
     sys.exit(EXIT_OK if result.ok else EXIT_FAILED)
 

@@ -24,7 +24,6 @@ steps (:meth:`GazeboApi.drain`), and the caller waits for it, as Gazebo applies 
 
 from __future__ import annotations
 
-import math
 import queue
 import threading
 

@@ -342,8 +342,9 @@ def main(argv: list[str]) -> int:
         from ...sim.session import Session
 
         first = (config.get("robots") or [{}])[0]
-        session = Session(Scene.load(config["scene_file"]), config.get("robot") or "burger",
-                          tuple(config["spawn"]), no_hit=config.get("no_hit", "inf"), seed=config.get("seed", 0),
+        session = Session(Scene.load(config["scene_file"]), first.get("robot") or config.get("robot") or "burger",
+                          tuple(first.get("spawn") or config["spawn"]), no_hit=config.get("no_hit", "inf"),
+                          seed=config.get("seed", 0),
                           mappings=first.get("mappings"), name=first.get("name") or model_name(config.get("robot")))
     except WorldgenError as err:
         print(f"worldgen: error: {err}", file=sys.stderr, flush=True)

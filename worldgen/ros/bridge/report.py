@@ -73,6 +73,12 @@ def run_text(result: Result, task: str | None, nodes: list[str]) -> str:
                  f"{_m(m.get('min_clearance_m'))}; contacts " +
                  (f"{len(contacts)} (first: {contacts[0]['shape']} at t = {contacts[0]['time']:.1f} s)"
                   if contacts else "none"))
+    for ns, r in sorted((m.get("robots") or {}).items()):
+        pose = r.get("final_pose")
+        lines.append(f"  robot {ns}{' (graded)' if ns == m.get('graded_robot') else ''}: cmd_vel messages "
+                     f"{r.get('cmd_vel_messages', 0)}; path {_m(r.get('path_length_m'))}; final pose "
+                     + (f"({pose[0]:.2f}, {pose[1]:.2f}, {pose[2]:.2f})" if pose else "–")
+                     + f"; contacts {len(r.get('contacts') or [])}")
     for f in result.sorted_findings():
         lines.append(f"  {f.severity:<7} {f.check}: {f.message}")
         if f.fix:

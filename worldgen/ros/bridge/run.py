@@ -106,6 +106,10 @@ def run_nodes(world: World, nodes: list[NodeSpec], options: RunOptions, base_env
         from .metrics import compute
 
         outcome = Outcome(compute(trace), trace=trace, logs={c.name: c.output() for c in children})
+        if len(trace.get("robots") or []) > 1:   # several robots: each one's numbers, by namespace
+            outcome.metrics["robots"] = {r["ns"]: dict(compute(dict(r, timing=trace.get("timing"))), name=r["name"])
+                                         for r in trace["robots"]}
+            outcome.metrics["graded_robot"] = trace.get("ns")
         outcome.findings += node_findings(nodes, children, alive, outcome.metrics)
         return outcome
 

@@ -6,7 +6,7 @@ from pathlib import Path
 
 
 def run_single(world_path: Path, node_args, *, task, target, duration, rate, spawn, robot, no_hit, fmt, junit=None,
-               plot=None, csv_path=None, bag=None, force=False):
+               plot=None, csv_path=None, bag=None, force=False, robot_ns=None):
     """Check everything (exit-2 errors before anything starts), run, write the files; returns the
     :class:`~worldgen.check.report.Result` and the report text."""
     from ...core.fsio import check_free, write_files
@@ -15,7 +15,7 @@ def run_single(world_path: Path, node_args, *, task, target, duration, rate, spa
     from .rosenv import import_rospy, node_python
     from .rubrics import PERSON, person_loop
     from .run import RunOptions, parse_duration, run_nodes
-    from .world import load_world
+    from .world import graded_robot, load_world
 
     check_free([p for p in (junit, plot, csv_path, bag) if p is not None], force)
     import_rospy()
@@ -23,8 +23,11 @@ def run_single(world_path: Path, node_args, *, task, target, duration, rate, spa
     world = load_world(world_path, spawn=spawn, robot=robot)
     search = [world_path.parent] if world_path.is_file() else []
     nodes = resolve_nodes(list(node_args), python, search)
+    if robot_ns is not None:
+        world = graded_robot(world, robot_ns)
     options = RunOptions(duration=parse_duration(duration, task), rate=rate, no_hit=no_hit, task=task,
-                         target=target, bag=None, person=person_loop(world.spawn) if task == "person-follow" else None)
+                         target=target, bag=None, person=person_loop(world.spawn) if task == "person-follow" else None,
+                         robot_ns=robot_ns)
     bag_tmp = None
     if bag is not None:
         bag_tmp = Path(bag).with_name(f".{Path(bag).name}.part")

@@ -4,6 +4,7 @@ where it came from; and the node's config file for one run."""
 
 from __future__ import annotations
 
+import dataclasses
 import json
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -103,6 +104,19 @@ def _robots(info) -> list[dict]:
         robots.append({"name": name, "ns": ns, "robot": model, "spawn": [r.pose[0], r.pose[1], r.pose[3]],
                        "tf_prefix": r.tf_prefix, "mappings": mappings or None})
     return robots
+
+
+def graded_robot(world: World, which: str) -> World:
+    """``world`` with the robot ``which`` (a namespace such as ``tb3_1`` or ``/tb3_1``, or a model name) as the
+    one graded: its spawn pose and model are the run's. InputError naming the robots there are when none is."""
+    for entry in world.robots:
+        if which in (entry["ns"], entry["ns"].strip("/"), entry["name"]):
+            x, y, yaw = entry["spawn"]
+            return dataclasses.replace(world, robot=entry["robot"], spawn=(x, y, yaw),
+                                       spawn_source=f"{world.spawn_source}, robot {entry['ns']}")
+    have = ", ".join(e["ns"] for e in world.robots) or "one robot, in no namespace of its own"
+    raise InputError(f"--robot-ns {which}: the launch file spawns no robot there (it has {have})",
+                     path=world.path, hint="give one of those namespaces, or leave out --robot-ns")
 
 
 def write_config(folder: Path, world: World, **options) -> Path:
