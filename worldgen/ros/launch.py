@@ -38,7 +38,9 @@ _NODE_TYPE = re.compile(r"^[A-Za-z0-9_][A-Za-z0-9_.+-]*$")       # an executable
 
 @dataclass(frozen=True)
 class NodeRef:
-    """A node started by a launch file: ``pkg/type`` run under ``name`` (in namespace ``ns`` when read back)."""
+    """A node started by a launch file: ``pkg/type`` run under ``name`` (in namespace ``ns`` when read back),
+    with what roslaunch gives it besides: ``args``, its ``<remap>``s (``from``, ``to``) and ``<env>``s, and whether
+    it is ``required`` (its exit ends the launch) or ``respawn`` (started again when it exits)."""
 
     package: str
     type: str
@@ -46,6 +48,10 @@ class NodeRef:
     ns: str = "/"
     args: str | None = None
     line: int | None = None
+    remaps: tuple = ()
+    env: tuple = ()
+    required: bool = False
+    respawn: bool = False
 
     @property
     def full_name(self) -> str:

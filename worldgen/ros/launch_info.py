@@ -39,7 +39,9 @@ class LaunchInfo:
     followed); ``model`` and ``spawn`` are the first robot's (for one-robot files: *the* robot), falling back to
     the ``model`` and ``x_pos``/``y_pos``/``z_pos``/``yaw`` args when no spawn node could be read.
     ``model_env`` names the environment variable the model depends on when it was not set. ``args`` are the
-    top-level args' values (None when unresolved). ``findings`` say what could not be resolved and why.
+    top-level args' values (None when unresolved). ``params`` are the parameters roslaunch would set on the
+    master (full name → value, typed, in the order set; nodes' private ones under their names), as far as they
+    resolve. ``findings`` say what could not be resolved and why.
     """
 
     path: Path
@@ -52,5 +54,6 @@ class LaunchInfo:
     args: dict[str, str | None] = field(default_factory=dict)
     robots: list[RobotSpawn] = field(default_factory=list)
     nodes: list[NodeRef] = field(default_factory=list)
+    params: dict = field(default_factory=dict)
     includes: list[Path] = field(default_factory=list)
     findings: list[Finding] = field(default_factory=list)

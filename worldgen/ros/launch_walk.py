@@ -1,6 +1,8 @@
-"""The launch-file walker: one file's elements in order — ``<arg>``, ``<group>``, ``<param>``, ``<include>``
-(followed), ``<node>`` (``gazebo_ros/spawn_model`` read for its pose, model and description) — into a
-:class:`~.launch_info.LaunchInfo`, with ``$(...)`` and ``if``/``unless`` evaluated by :mod:`.substitution`.
+"""The launch-file walker: one file's elements in order — ``<arg>``, ``<group>``, ``<param>``, ``<rosparam>``,
+``<remap>``, ``<env>``, ``<include>`` (followed), ``<node>`` (with its own params, remaps and env;
+``gazebo_ros/spawn_model`` read for its pose, model and description) — into a :class:`~.launch_info.LaunchInfo`,
+with ``$(...)`` and ``if``/``unless`` evaluated by :mod:`.substitution` and parameters typed and named by
+:mod:`.launch_params`.
 
 Read top-down: :func:`load_launch` parses a file and walks it (:func:`walk`), which hands each element in
 effect to its reader (:data:`ELEMENTS`).
@@ -19,6 +21,8 @@ from ..core.errors import WorldFileError
 from ..core.findings import Finding
 from .launch import NodeRef, join_ns
 from .launch_info import LaunchInfo, RobotSpawn
+from .launch_params import ParamError, load_yaml, param_name, rosparam_sets, set_value, storable, \
+    typed_value
 from .substitution import (ArgValue, Lookup, Scope, Unresolved, condition, expand, expand_lenient,
                            expand_or_keep, try_expand)
 
@@ -77,9 +81,11 @@ def parse_launch_xml(path: Path, what: str = "launch file"):
                        empty_hint="a launch file holds one <launch> element")
 
 
-def load_launch(read: LaunchRead, path: Path, passed: Dict[str, ArgValue], ns: str, line: int | None) -> None:
-    """Read the launch file ``path`` (given the args ``passed`` to it, in namespace ``ns``) into ``read``; the
-    top-level file's args become ``read.info.args``."""
+def load_launch(read: LaunchRead, path: Path, passed: Dict[str, ArgValue], ns: str, line: int | None,
+                outer: Scope | None = None) -> None:
+    """Read the launch file ``path`` (given the args ``passed`` to it, in namespace ``ns``, inside the scope
+    ``outer`` whose remaps and env carry over) into ``read``; the top-level file's args become
+    ``read.info.args``."""
     path = Path(path)
     if path.resolve() in read.stack:
         raise WorldFileError("a launch file includes itself", path=path, line=line,
@@ -96,7 +102,7 @@ def load_launch(read: LaunchRead, path: Path, passed: Dict[str, ArgValue], ns: s
         raise WorldFileError(f"the root element is <{root.tag}>, not <launch>", path=path,
                              line=root.sourceline, hint="a launch file holds one <launch> element")
     read.stack.append(path.resolve())
-    scope = Scope(path, {}, passed, ns)
+    scope = Scope(path, {}, passed, ns, outer.remaps if outer else (), outer.env if outer else ())
     walk(read, root, scope)
     read.stack.pop()
     if len(read.stack) == 0:
@@ -111,12 +117,13 @@ def _found_path(read: LaunchRead, value: str, scope: Scope) -> str | None:
         return None
 
 
-def walk(read: LaunchRead, parent, scope: Scope) -> None:
-    """Every element under ``parent`` whose ``if``/``unless`` holds, to its reader in :data:`ELEMENTS`."""
+def walk(read: LaunchRead, parent, scope: Scope, elements=None) -> None:
+    """Every element under ``parent`` whose ``if``/``unless`` holds, to its reader in ``elements`` (default
+    :data:`ELEMENTS`)."""
     for el in parent:
         if not isinstance(el.tag, str) or not condition(read.lookup, el, scope, read.unresolved):
             continue
-        handler = ELEMENTS.get(el.tag)
+        handler = (ELEMENTS if elements is None else elements).get(el.tag)
         if handler is not None:
             handler(read, el, scope)
 
@@ -147,17 +154,132 @@ def read_arg(read: LaunchRead, el, scope: Scope) -> None:
 def read_group(read: LaunchRead, el, scope: Scope) -> None:
     """``<group>``: its elements, in its namespace."""
     ns = join_ns(scope.ns, expand_or_keep(read.lookup, el.get("ns") or "", scope))
-    walk(read, el, Scope(scope.path, scope.args, scope.passed, ns))   # args are shared with the file
+    walk(read, el, scope.inner(ns))   # args are shared with the file
 
 
 def read_param(read: LaunchRead, el, scope: Scope) -> None:
-    """``<param>``: its text (a robot description's xacro command, say), kept to find the robot model."""
+    """``<param>``: its text kept (a robot description's xacro command, say, to find the robot model), and its
+    value, typed as roslaunch types it, among the parameters the launch file sets (``read.info.params``)."""
     name = el.get("name")
     if not name:
         return
     raw = el.get("command") or el.get("value") or el.get("textfile") or ""
-    read.params[join_ns(scope.ns, expand_or_keep(read.lookup, name, scope))] = \
-        expand_lenient(read.lookup, raw, scope)[0]
+    try:
+        full = param_name(expand_or_keep(read.lookup, name, scope), scope.ns, scope.node)
+    except ParamError as err:
+        read.note("launch-param", "warning", f"<param name=\"{name}\">: {err}", scope, el.sourceline,
+                  "put it inside the <node> it is for, or drop the ~")
+        return
+    read.params[full] = expand_lenient(read.lookup, raw, scope)[0]
+    if el.get("command") is not None:   # roslaunch runs it; a robot description's xacro: our robot stands in
+        if "xacro" not in el.get("command") and "robot_description" not in full:
+            read.note("launch-param", "info", f"param {full} comes from a command, which is not run here", scope,
+                      el.sourceline, "give the value itself (value=, textfile= or a <rosparam>)")
+        return
+    if el.get("binfile") is not None:
+        read.note("launch-param", "info", f"param {full} is a binfile, which is not loaded here", scope,
+                  el.sourceline, None)
+        return
+    if el.get("textfile") is not None:
+        text = _file_text(read, el.get("textfile"), f"param {full} textfile", scope, el.sourceline)
+        if text is not None:
+            set_value(read.info.params, full, text)
+        return
+    if el.get("value") is None:
+        return
+    try:
+        value = typed_value(expand(read.lookup, el.get("value"), scope, find=True), el.get("type"))
+    except Unresolved as err:
+        read.unresolved(err, f"param {full}", scope, el.sourceline)
+        return
+    except ParamError as err:
+        read.note("launch-param", "error", f"param {full}: {err}", scope, el.sourceline,
+                  "fix the value or its type= (roslaunch stops on it)")
+        return
+    _store(read, full, value, scope, el.sourceline)
+
+
+def read_rosparam(read: LaunchRead, el, scope: Scope) -> None:
+    """``<rosparam>``: a YAML document (inline or ``file=``) loaded into ``ns``/``param`` (a node's private
+    namespace inside a ``<node>``). ``command="delete"`` and ``dump`` run before roslaunch sets any parameter, on
+    what the master held already: on the fresh master of a run, nothing, so neither changes what is set."""
+    command = (el.get("command") or "load").strip()
+    try:
+        ns = param_name(expand_or_keep(read.lookup, el.get("ns") or "", scope), scope.ns, scope.node) \
+            if el.get("ns") else (scope.node or scope.ns)
+        param = el.get("param")
+        full = param_name(expand_or_keep(read.lookup, param, scope), ns, None) if param else None
+    except ParamError as err:
+        read.note("launch-param", "warning", f"<rosparam>: {err}", scope, el.sourceline,
+                  "put it inside the <node> it is for, or drop the ~")
+        return
+    if command != "load":
+        return
+    if el.get("file") is not None:
+        text = _file_text(read, el.get("file"), "<rosparam file>", scope, el.sourceline)
+    else:
+        text = el.text or ""
+        if (el.get("subst_value") or "").strip().lower() in ("true", "1"):
+            try:
+                text = expand(read.lookup, text, scope, find=True)
+            except Unresolved as err:
+                read.unresolved(err, "<rosparam subst_value>", scope, el.sourceline)
+                return
+    if text is None:
+        return
+    try:
+        pairs = rosparam_sets(load_yaml(text), ns, full)
+    except ParamError as err:
+        read.note("launch-param", "error", f"<rosparam>: {err}", scope, el.sourceline,
+                  "fix the YAML (roslaunch stops on it)")
+        return
+    for name, value in pairs:
+        _store(read, name, value, scope, el.sourceline)
+
+
+def _store(read: LaunchRead, name: str, value, scope: Scope, line: int | None) -> None:
+    why = storable(value)
+    if why is not None:
+        read.note("launch-param", "warning", f"param {name} is not set: {why}", scope, line,
+                  "give it a value the parameter server can hold")
+        return
+    set_value(read.info.params, name, value)
+
+
+def _file_text(read: LaunchRead, raw: str, what: str, scope: Scope, line: int | None) -> str | None:
+    """The text of the file a ``textfile=``/``file=`` names (``$(find)`` resolved), or None with a finding."""
+    from ..core.inputs import read_text_capped
+
+    try:
+        path = Path(expand(read.lookup, raw, scope, find=True))
+    except Unresolved as err:
+        read.unresolved(err, what, scope, line)
+        return None
+    try:
+        return read_text_capped(path, what="parameter file")
+    except OSError as err:
+        reason = err.strerror or str(err)
+    except UnicodeDecodeError:
+        reason = "not UTF-8 text"
+    read.note("launch-param", "warning", f"{what} {path}: {reason}", scope, line, "fix the path")
+    return None
+
+
+def read_remap(read: LaunchRead, el, scope: Scope) -> None:
+    """``<remap from to>``: for the nodes declared after it in this scope (a node's own: for that node)."""
+    source, target = el.get("from"), el.get("to")
+    if not source or not target:
+        read.note("launch-remap", "warning", "<remap> needs both from= and to=", scope, el.sourceline,
+                  'write <remap from="scan" to="/base_scan"/>')
+        return
+    scope.remaps = scope.remaps + ((expand_or_keep(read.lookup, source, scope),
+                                    expand_or_keep(read.lookup, target, scope)),)
+
+
+def read_env(read: LaunchRead, el, scope: Scope) -> None:
+    """``<env name value>``: an environment variable for the nodes declared after it in this scope."""
+    if el.get("name"):
+        scope.env = scope.env + ((el.get("name"), expand_or_keep(read.lookup, el.get("value") or "", scope)),)
 
 
 def read_include(read: LaunchRead, el, scope: Scope) -> None:
@@ -186,7 +308,7 @@ def read_include(read: LaunchRead, el, scope: Scope) -> None:
                   el.sourceline, "fix the path of the <include>")
         return
     read.info.includes.append(target)
-    load_launch(read, target, passed, ns, el.sourceline)
+    load_launch(read, target, passed, ns, el.sourceline, scope)
 
 
 def read_world_name(read: LaunchRead, value: ArgValue, line: int | None, scope: Scope) -> None:
@@ -217,11 +339,22 @@ def read_node(read: LaunchRead, el, scope: Scope) -> None:
                              hint='write <node pkg="PKG" type="EXECUTABLE" name="NAME"/>')
     ns = join_ns(scope.ns, expand_or_keep(read.lookup, el.get("ns") or "", scope))
     args, errors = expand_lenient(read.lookup, el.get("args") or "", scope)
-    node = NodeRef(pkg, node_type, expand_or_keep(read.lookup, name or node_type, scope), ns,
-                   None if errors else args, el.sourceline)
+    name = expand_or_keep(read.lookup, name or node_type, scope)
+    own = Scope(scope.path, scope.args, scope.passed, ns, scope.remaps, scope.env, join_ns(ns, name))
+    walk(read, el, own, NODE_ELEMENTS)   # its params (private), remaps and env
+    required, respawn = _flag(read, el, "required", scope), _flag(read, el, "respawn", scope)
+    if required and respawn:
+        read.note("launch-node", "error", f"node {join_ns(ns, name)} is both required and respawn (roslaunch "
+                  "refuses the file)", scope, el.sourceline, "keep one of required=\"true\" and respawn=\"true\"")
+    node = NodeRef(pkg, node_type, name, ns, None if errors else args, el.sourceline, own.remaps, own.env,
+                   required, respawn)
     read.info.nodes.append(node)
     if (pkg, node_type) == ("gazebo_ros", "spawn_model"):
         read_spawn(read, node, args, errors, scope, el.sourceline)
+
+
+def _flag(read: LaunchRead, el, attr: str, scope: Scope) -> bool:
+    return expand_or_keep(read.lookup, el.get(attr) or "false", scope).strip().lower() in ("true", "1")
 
 
 def read_spawn(read: LaunchRead, node: NodeRef, args: str, errors: List[Unresolved], scope: Scope,
@@ -302,11 +435,16 @@ def _child_line(el, arg_name: str) -> int | None:
     return el.sourceline
 
 
-# The elements the walker reads; any other (remap, rosparam, machine, test, …) adds nothing here.
+# The elements the walker reads; any other (machine, test, …) adds nothing here.
 ELEMENTS: Dict[str, Callable[[LaunchRead, object, Scope], None]] = {
     "arg": read_arg,
     "group": read_group,
     "param": read_param,
+    "rosparam": read_rosparam,
+    "remap": read_remap,
+    "env": read_env,
     "include": read_include,
     "node": read_node,
 }
+# Inside a <node>: its private parameters, remaps and environment.
+NODE_ELEMENTS = {tag: ELEMENTS[tag] for tag in ("param", "rosparam", "remap", "env")}

@@ -32,12 +32,19 @@ ArgValue = Union[str, Unresolved]
 @dataclass
 class Scope:
     """One launch file being evaluated (or a ``<group>`` in it): its args, the args passed to it, where it is,
-    and its namespace."""
+    its namespace, and the ``<remap>``s and ``<env>``s in effect for the nodes it declares next."""
 
     path: Path
     args: Dict[str, ArgValue]
     passed: Dict[str, ArgValue]
     ns: str
+    remaps: Tuple[Tuple[str, str], ...] = ()
+    env: Tuple[Tuple[str, str], ...] = ()
+    node: Optional[str] = None   # inside a <node>: its full name (whose private namespace ~ names are in)
+
+    def inner(self, ns: str) -> "Scope":
+        """A ``<group>``'s scope: the file's args, its own namespace, the remaps and env in effect so far."""
+        return Scope(self.path, self.args, self.passed, ns, self.remaps, self.env)
 
 
 @dataclass(frozen=True)

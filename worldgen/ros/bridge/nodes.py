@@ -1,13 +1,17 @@
 """What ``worldgen run … NODE…`` starts: each NODE is a ``.py`` file (run with the Python that has rospy), a
 ``PKG/TYPE`` executable of a catkin package (found as ``rosrun`` finds it), or a ``.launch`` file (its nodes, less
-the Gazebo and robot-description ones this simulator stands in for). An argument holding ``:=`` (``_kp:=0.8``,
-``scan:=/base_scan``) belongs to the node before it, as on a ``rosrun`` command line.
+the Gazebo and robot-description ones this simulator stands in for, each as roslaunch starts it: its ``args``,
+``<remap>``s, ``<env>``s, name and namespace; the parameters the file sets go on the master first). An argument
+holding ``:=`` belongs to the node before it: after a ``.py`` file or ``PKG/TYPE`` it is the node's argument
+(``_kp:=0.8``, ``scan:=/base_scan``), as on a ``rosrun`` command line; after a launch file it is the file's arg
+(``distance:=0.65``), as on a ``roslaunch`` command line.
 """
 
 from __future__ import annotations
 
 import os
 import re
+import shlex
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Sequence
@@ -22,12 +26,21 @@ _PKG_TYPE = re.compile(r"^[A-Za-z][A-Za-z0-9_]*/[^/\s]+$")
 
 @dataclass
 class NodeSpec:
-    """One process to start: its display name, the command, and the ``name:=value`` arguments it gets."""
+    """One process to start: its display name, the command, and the ``name:=value`` arguments it gets; from a
+    launch file also the parameters that file sets (full name → value, set on the master before any node starts),
+    its environment, whether it is ``required`` (its exit ends the run, as it ends a roslaunch) or asked to
+    ``respawn`` (not done here), and the launch file's findings about them."""
 
     name: str
     command: list[str]
     args: list[str] = field(default_factory=list)
     source: str = ""
+    params: dict = field(default_factory=dict)
+    env: dict = field(default_factory=dict)
+    required: bool = False
+    respawn: bool = False
+    launch: str = ""          # the launch file and line that start it, for findings
+    notes: list = field(default_factory=list)
 
     @property
     def argv(self) -> list[str]:
@@ -124,7 +137,12 @@ def _launch_nodes(path: Path, python: str, search: Sequence[str | Path], args: l
 
     if not path.is_file():
         raise InputError("no such launch file", path=path, hint="check the path")
-    info = read_launch(path)
+    passed = dict(arg.split(":=", 1) for arg in args)
+    info = read_launch(path, passed)
+    unknown = sorted(set(passed) - set(info.args))
+    if unknown:
+        raise InputError(f"the launch file has no arg {unknown[0]!r}", path=path,
+                         hint=f"its args are: {', '.join(sorted(info.args)) or 'none'}")
     from ...core import packages
 
     own = packages.owning_package(path)
@@ -133,11 +151,24 @@ def _launch_nodes(path: Path, python: str, search: Sequence[str | Path], args: l
     for node in info.nodes:
         if node.package in STAND_INS:
             continue
-        extra = (node.args or "").split() + args + [f"__name:={node.name}"]
+        extra = _words(node.args or "") + [f"{a}:={b}" for a, b in node.remaps] + [f"__name:={node.name}"]
         if node.ns not in ("", "/"):
             extra.append(f"__ns:={node.ns}")
-        specs.append(_package_node(f"{node.package}/{node.type}", python, roots, extra, node.name))
+        spec = _package_node(f"{node.package}/{node.type}", python, roots, extra, node.name)
+        spec.params, spec.env = info.params, dict(node.env)
+        spec.required, spec.respawn, spec.launch = node.required, node.respawn, f"{path}:{node.line}"
+        specs.append(spec)
     if not specs:
         raise InputError("the launch file starts no node of its own (only Gazebo and robot-description ones)",
                          path=path, hint="give the node's .py file, or a launch file that starts it")
+    specs[0].notes = [f for f in info.findings if f.check in ("launch-param", "launch-remap", "launch-node") or
+                      f.severity != "info"]
     return specs
+
+
+def _words(args: str) -> list[str]:
+    """A node's ``args`` split as a shell would (roslaunch's way), or at spaces when its quotes do not close."""
+    try:
+        return shlex.split(args)
+    except ValueError:
+        return args.split()

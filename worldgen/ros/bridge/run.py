@@ -1,9 +1,12 @@
 """One ``worldgen run``: a private master on a free port, the simulator node, the students' nodes, the
 duration, then everything stopped and what the robot did measured (and judged, with a task).
 
-Order: the master; ``/use_sim_time`` set; the simulator node, paused at time 0; the nodes; once every node is up
+Order: the master; ``/use_sim_time`` and the launch files' parameters set (what ``roslaunch`` would set, so
+``rosparam get`` and the nodes' ``~`` parameters see them); the simulator node, paused at time 0; the nodes, each
+with its launch file's environment; once every node is up
 (registered with the master, or already exited) the simulator is unpaused, as Gazebo started paused and then
-unpaused would be; the run ends after ``duration`` simulated seconds. Every process is in a group of its own,
+unpaused would be; the run ends after ``duration`` simulated seconds, or when a node the launch file marks
+``required`` exits (roslaunch then stops everything). Every process is in a group of its own,
 stopped on any exit (see :mod:`.supervise`); nodes' output goes to files, whose last line a finding quotes when a
 node crashes.
 """
@@ -84,6 +87,8 @@ def run_nodes(world: World, nodes: list[NodeSpec], options: RunOptions, base_env
         _, uri = start_master(supervisor, None, dict(base_env or os.environ), log=tmp / "master.log")
         env = with_gazebo_msgs(ros_env(base_env, uri, tmp / "ros_home"))
         set_param(uri, "/use_sim_time", True)
+        for name, value in launch_params(nodes).items():
+            set_param(uri, name, value)
         trace_file = tmp / "trace.json"
         config = write_config(tmp, world, rate=options.rate, duration=options.duration, no_hit=options.no_hit,
                               trace=str(trace_file), bag=str(options.bag) if options.bag else None,
@@ -92,11 +97,13 @@ def run_nodes(world: World, nodes: list[NodeSpec], options: RunOptions, base_env
         simulator = supervisor.start("simulator", [sys.executable, "-m", "worldgen.ros.bridge.node", str(config)],
                                      _bridge_env(env), log=tmp / "simulator.log")
         _wait_for_simulator(simulator, uri)
-        children = [supervisor.start(n.name, n.argv, env, log=tmp / f"node_{i}.log") for i, n in enumerate(nodes)]
+        children = [supervisor.start(n.name, n.argv, dict(env, **n.env), log=tmp / f"node_{i}.log")
+                    for i, n in enumerate(nodes)]
         _wait_for_nodes(children, uri)
         set_param(uri, "/worldgen/pids", [c.proc.pid for c in children])
         set_param(uri, START_PARAM, True)
-        _wait_for_end(simulator, options)
+        ended_by = _wait_for_end(simulator, options, [c for c, n in zip(children, nodes) if n.required],
+                                 supervisor)
         alive = {c.name: c.running for c in children}
         supervisor.stop_all()
         if not trace_file.is_file():
@@ -110,8 +117,34 @@ def run_nodes(world: World, nodes: list[NodeSpec], options: RunOptions, base_env
             outcome.metrics["robots"] = {r["ns"]: dict(compute(dict(r, timing=trace.get("timing"))), name=r["name"])
                                          for r in trace["robots"]}
             outcome.metrics["graded_robot"] = trace.get("ns")
+        outcome.findings += launch_findings(nodes, ended_by, outcome.metrics)
         outcome.findings += node_findings(nodes, children, alive, outcome.metrics)
         return outcome
+
+
+def launch_params(nodes: list[NodeSpec]) -> dict:
+    """Every parameter the nodes' launch files set, in the order roslaunch sets them (a later file wins)."""
+    params: dict = {}
+    for node in nodes:
+        params.update(node.params)
+    return params
+
+
+def launch_findings(nodes: list[NodeSpec], ended_by: Child | None, metrics: dict) -> list[Finding]:
+    """What the launch files said about their parameters, nodes asked to respawn (not done here), and the
+    required node whose exit ended the run."""
+    findings: list[Finding] = []
+    for node in nodes:
+        findings += [f for f in node.notes if f not in findings]
+        if node.respawn:
+            findings.append(Finding("launch", "info", f"node {node.name} has respawn=\"true\": worldgen does not "
+                                                      "start it again when it exits", where=node.launch))
+    if ended_by is not None:
+        findings.append(Finding("launch", "info", f"required node {ended_by.name} exited at "
+                                                  f"{metrics.get('sim_time_s', 0.0):.1f} s of simulated time, "
+                                                  "which ends the run (as roslaunch stops everything)",
+                                where=next(n.launch for n in nodes if n.name == ended_by.name)))
+    return findings
 
 
 def _wait_for_simulator(simulator: Child, uri: str) -> None:
@@ -140,11 +173,19 @@ def _wait_for_nodes(children: list[Child], uri: str) -> None:
     time.sleep(SETTLE)
 
 
-def _wait_for_end(simulator: Child, options: RunOptions) -> None:
+def _wait_for_end(simulator: Child, options: RunOptions, required: list[Child], supervisor: Supervisor
+                  ) -> Child | None:
+    """Until the simulator has run its duration (or a time limit); a required node that exits first stops the
+    simulator (which then writes its trace) and is returned."""
     limit = options.duration / options.rate * 1.5 + 30 if options.rate > 0 else options.duration * 2 + 60
     deadline = time.monotonic() + limit
     while simulator.running and time.monotonic() < deadline:
+        ended = next((c for c in required if not c.running), None)
+        if ended is not None:
+            supervisor.stop(simulator)
+            return ended
         time.sleep(0.05)
+    return None
 
 
 def node_findings(nodes: list[NodeSpec], children: list[Child], alive: dict[str, bool], metrics: dict
