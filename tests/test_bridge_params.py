@@ -7,12 +7,16 @@ from __future__ import annotations
 
 import json
 import shutil
+import signal
+import subprocess
+import time
 from pathlib import Path
 
 import pytest
 from conftest import CliRunner
 
-from bridgetools import NODES, ROOM, WALL_FACE, SCAN_X, need_ros, no_leftovers
+from bridgetools import NODES, ROOM, WALL_FACE, SCAN_X, need_ros, no_leftovers, ros_env, wait_master, worldgen
+from rosstubs import SYSTEM_PYTHON, need
 from worldgen.cli import main
 
 PACKAGE_XML = """<?xml version="1.0"?>
@@ -121,3 +125,29 @@ def test_a_launch_file_whose_parameter_roslaunch_refuses_says_so(package, tmp_pa
     result = run([str(ROOM), str(launch), "--duration", "3", "--rate", "max", "--format", "json"])
     bad = [f for f in json.loads(result.stdout)["findings"] if f["check"] == "launch-param"]
     assert bad and bad[0]["where"] == f"{launch}:3" and "'one' is not an int" in bad[0]["message"], bad
+
+
+def test_sim_sets_what_roslaunch_would_so_rosparam_get_sees_it(package, tmp_path):
+    """`worldgen sim --launch FILE` stands in for `roslaunch FILE`: its parameters (a node's private ones under the
+    node's name) are on the master, where `rosparam get` and a node started by hand find them."""
+    launch = package / "launch" / "stop.launch"
+    launch.write_text(STOP_LAUNCH.replace("{dump}", str(tmp_path / "unused.json")))
+    env = ros_env(tmp_path)
+    proc = worldgen(["sim", str(ROOM), "--launch", str(launch), "--rate", "4"], env)
+    try:
+        wait_master(env, proc)
+        rosparam = need("rosparam")
+        deadline = time.monotonic() + 20
+        got = ""
+        while "target_distance" not in got and time.monotonic() < deadline:
+            got = subprocess.run([SYSTEM_PYTHON, rosparam, "get", "/stopper"], env=env, capture_output=True,
+                                 text=True, timeout=30).stdout
+        assert "target_distance: 0.8" in got and "label: '12'" in got, got
+        speeds = subprocess.run([SYSTEM_PYTHON, rosparam, "get", "/speeds/cruise"], env=env, capture_output=True,
+                                text=True, timeout=30).stdout
+        assert speeds.strip() == "0.12"
+    finally:
+        proc.send_signal(signal.SIGINT)
+        out, err = proc.communicate(timeout=30)
+    assert "set the launch file's" in err and "Traceback" not in err, err
+    no_leftovers(env)

@@ -87,7 +87,7 @@ def run_nodes(world: World, nodes: list[NodeSpec], options: RunOptions, base_env
         _, uri = start_master(supervisor, None, dict(base_env or os.environ), log=tmp / "master.log")
         env = with_gazebo_msgs(ros_env(base_env, uri, tmp / "ros_home"))
         set_param(uri, "/use_sim_time", True)
-        for name, value in launch_params(nodes).items():
+        for name, value in dict(world.params, **launch_params(nodes)).items():
             set_param(uri, name, value)
         trace_file = tmp / "trace.json"
         config = write_config(tmp, world, rate=options.rate, duration=options.duration, no_hit=options.no_hit,

@@ -1,5 +1,6 @@
-"""``worldgen sim`` as a library: join the master at ``ROS_MASTER_URI`` (or start one when none answers), run the
-simulator node until Ctrl-C or the duration, and stop whatever was started."""
+"""``worldgen sim`` as a library: join the master at ``ROS_MASTER_URI`` (or start one when none answers), set the
+parameters the launch file sets (as roslaunch would), run the simulator node until Ctrl-C or the duration, and
+stop whatever was started."""
 
 from __future__ import annotations
 
@@ -12,7 +13,7 @@ from typing import Callable
 from urllib.parse import urlparse
 
 from ...core.errors import InputError
-from .master import master_answers, start_master
+from .master import master_answers, set_param, start_master
 from .gazebo_types import gazebo_msgs_path
 from .supervise import Supervisor
 from .world import World, write_config
@@ -38,6 +39,10 @@ def sim(world: World, *, rate: float, duration: float | None, no_hit: str,
             _, uri = start_master(supervisor, port, env)
             say(f"worldgen sim: started a ROS master at {uri} (stopped on exit)")
         env["ROS_MASTER_URI"] = uri
+        for name, value in world.params.items():   # what roslaunch of the launch file would set
+            set_param(uri, name, value)
+        if world.params:
+            say(f"worldgen sim: set the launch file's {len(world.params)} parameter(s) ({', '.join(world.params)})")
         generated = gazebo_msgs_path()
         if generated is not None:
             env["PYTHONPATH"] = os.pathsep.join(p for p in (generated, env.get("PYTHONPATH")) if p)

@@ -1,6 +1,6 @@
 """What the simulator node simulates: a world file, a floorplan spec (built as ``worldgen build`` would) or a
-launch file (the world it starts, its robot and spawn pose) → a scene, a robot model and a spawn pose, each with
-where it came from; and the node's config file for one run."""
+launch file (the world it starts, its robots and spawn poses, the parameters it sets) → a scene, a robot model and
+a spawn pose, each with where it came from; and the node's config file for one run."""
 
 from __future__ import annotations
 
@@ -22,6 +22,7 @@ class World:
     spawn: tuple[float, float, float]
     spawn_source: str
     robots: list[dict] = field(default_factory=list)   # several robots: name, ns, robot, spawn, tf_prefix, mappings
+    params: dict = field(default_factory=dict)          # what the launch file sets on the master (full name → value)
 
 
 def load_world(path: str | Path, *, spawn=None, robot: str | None = None, launch: str | Path | None = None,
@@ -38,8 +39,9 @@ def load_world(path: str | Path, *, spawn=None, robot: str | None = None, launch
     found_robot, found_spawn, robot_src, spawn_src = None, None, "default", "the world's origin"
     world_file = path
     robots: list[dict] = []
+    params: dict = {}
     if kind == "launch":
-        world_file, found_robot, found_spawn, robots = _from_launch(path)
+        world_file, found_robot, found_spawn, robots, params = _from_launch(path)
         robot_src = spawn_src = f"launch file {path}"
     elif kind == "package":
         raise InputError("is a catkin package folder, not a world", path=path,
@@ -49,7 +51,7 @@ def load_world(path: str | Path, *, spawn=None, robot: str | None = None, launch
         found_robot, found_spawn = spec_robot["model"], tuple(spec_robot["spawn"])
         robot_src = spawn_src = f"spec {path}"
     if launch is not None:
-        _, launch_robot, launch_spawn, robots = _from_launch(Path(launch), need_world=False)
+        _, launch_robot, launch_spawn, robots, params = _from_launch(Path(launch), need_world=False)
         if launch_robot:
             found_robot, robot_src = launch_robot, f"launch file {launch}"
         if launch_spawn:
@@ -67,7 +69,7 @@ def load_world(path: str | Path, *, spawn=None, robot: str | None = None, launch
         robots[0] = dict(robots[0], robot=found_robot or robots[0]["robot"],
                          spawn=list(found_spawn or robots[0]["spawn"]))
     return World(path, scene, found_robot or "burger", robot_src, tuple(found_spawn or (0.0, 0.0, 0.0)), spawn_src,
-                 robots)
+                 robots, params)
 
 
 def _from_launch(path: Path, need_world: bool = True):
@@ -83,7 +85,8 @@ def _from_launch(path: Path, need_world: bool = True):
         raise WorldFileError(f"the world this launch file starts cannot be found: {info.world_ref or '(none)'}",
                              path=path, hint="is its package on ROS_PACKAGE_PATH? or give the world file itself "
                                              "and --launch THIS_FILE")
-    return world, info.model if info.model in ("burger", "waffle", "waffle_pi") else None, spawn, _robots(info)
+    return (world, info.model if info.model in ("burger", "waffle", "waffle_pi") else None, spawn, _robots(info),
+            info.params)
 
 
 def _robots(info) -> list[dict]:
