@@ -117,3 +117,28 @@ def test_unknown_models_get_gazebos_failure_answers(sim):
     assert got["get"] == [False, "GetModelState: model [no_such_model] does not exist"]
     assert got["set"] == [False, "SetModelState: model [no_such_model] does not exist"]
     assert got["delete"] == [False, "DeleteModel: model does not exist"]
+
+
+def test_a_robot_spawned_with_spawn_urdf_model_is_seen_and_driven_in_its_namespace(sim, tmp_path):
+    """A second TurtleBot3 (our burger's URDF, as a node would send its robot_description) 1.2 m ahead: the first
+    robot's front beam reads its body, it publishes /second/odom and backs away on /second/cmd_vel, and it goes
+    when deleted."""
+    from worldgen.robots import robot_urdf
+
+    gazebo_probe(sim, "teleport", "turtlebot3_burger", "0", "0", "0")
+    urdf = tmp_path / "burger.urdf"
+    urdf.write_text(robot_urdf("burger"))
+    got = gazebo_probe(sim, "robot", str(urdf), "1.2", "0", "/second")
+    assert got["spawned"] == [True, "SpawnModel: Successfully spawned entity"]
+    assert got["before"] == pytest.approx(WALL_FACE - SCAN_X, abs=0.05)
+    assert 1.2 - 0.12 - SCAN_X < got["seen"] < 1.2 - SCAN_X, got   # its body, ahead of its centre
+    assert got["start"] == pytest.approx([1.2, 0.0], abs=0.03)
+    assert got["end"][0] - got["start"][0] == pytest.approx(0.2, abs=0.06)   # backed away from us: +x
+    assert "second_robot" in got["names"]
+    assert got["deleted"][0] is True and got["after"] == pytest.approx(WALL_FACE - SCAN_X, abs=0.05)
+
+
+def test_reset_world_puts_a_teleported_robot_back_at_its_spawn(sim):
+    got = gazebo_probe(sim, "reset", "1.0", "1.0", "0.5")
+    assert got["moved"] == pytest.approx([1.0, 1.0], abs=0.03)
+    assert got["back"] == pytest.approx([0.0, 0.0, 0.0], abs=0.03)

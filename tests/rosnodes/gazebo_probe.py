@@ -6,6 +6,8 @@
     gazebo_probe.py pause                    /clock across pause_physics and unpause_physics
     gazebo_probe.py missing                  get/set/delete of a model that does not exist: Gazebo's answers
     gazebo_probe.py robots NS1 NS2           each robot's front beam; drive NS1 only; both odometries; tf frames
+    gazebo_probe.py robot URDF_FILE X Y NS   spawn_urdf_model a robot in NS facing us; our front beam; drive it
+    gazebo_probe.py reset X Y YAW            teleport the robot, then reset_world: /odom before and after
 """
 
 import json
@@ -156,6 +158,46 @@ def robots(ns1, ns2):
             "scan_frames": scan_frames}
 
 
+def spawn_robot(urdf_file, x, y, ns):
+    """A second TurtleBot3 from spawn_urdf_model, facing the first: the first one's LiDAR sees it; its own
+    topics are in ``ns`` and its cmd_vel drives it (away, here); then it is deleted."""
+    before = front()
+    pose = Pose()
+    pose.position.x, pose.position.y = x, y
+    pose.orientation.z, pose.orientation.w = 1.0, 0.0   # yaw pi: facing the first robot
+    with open(urdf_file) as f:
+        urdf = f.read()
+    answer = service("/gazebo/spawn_urdf_model", SpawnModel)("second_robot", urdf, ns, pose, "world")
+    seen = front()
+    start = next_message(f"{ns}/odom", Odometry).pose.pose.position
+    cmd = rospy.Publisher(f"{ns}/cmd_vel", Twist, queue_size=1)
+    deadline = time.time() + 10
+    while cmd.get_num_connections() == 0 and time.time() < deadline:
+        time.sleep(0.05)
+    twist = Twist()
+    twist.linear.x = -0.1   # backing away from us
+    cmd.publish(twist)
+    sim_sleep(2.0)
+    cmd.publish(Twist())
+    sim_sleep(0.5)
+    end = next_message(f"{ns}/odom", Odometry).pose.pose.position
+    states = rospy.wait_for_message("/gazebo/model_states", ModelStates, timeout=20)
+    deleted = service("/gazebo/delete_model", DeleteModel)("second_robot")
+    return {"spawned": [answer.success, answer.status_message], "before": before, "seen": seen,
+            "start": [start.x, start.y], "end": [end.x, end.y], "names": list(states.name),
+            "deleted": [deleted.success, deleted.status_message], "after": front()}
+
+
+def reset(x, y, yaw):
+    teleport("turtlebot3_burger", x, y, yaw)
+    moved = next_message("/odom", Odometry).pose.pose.position
+    service("/gazebo/reset_world", Empty)()
+    back = next_message("/odom", Odometry)
+    return {"moved": [moved.x, moved.y], "back": [back.pose.pose.position.x, back.pose.pose.position.y,
+                                                  yaw_of(back.pose.pose.orientation)],
+            "time_after": rospy.Time.now().to_sec()}
+
+
 def main():
     rospy.init_node("gazebo_probe", anonymous=True)
     wait_for_time()
@@ -168,6 +210,10 @@ def main():
         result = pause()
     elif command == "missing":
         result = missing()
+    elif command == "robot":
+        result = spawn_robot(args[0], float(args[1]), float(args[2]), args[3])
+    elif command == "reset":
+        result = reset(float(args[0]), float(args[1]), float(args[2]))
     else:
         result = robots(args[0], args[1])
     print(json.dumps(result))
