@@ -1,4 +1,5 @@
-"""The scene: what a world file holds once read, as collision shapes in the world frame.
+"""The scene: what a world file holds once read, as collision shapes in the world frame (what the robot bumps
+into and the LiDAR sees) and visual shapes with their colours (what a camera sees, floor markings included).
 
 Data flows file → :mod:`worldgen.sdf.reader` → :class:`Scene` → checks / pybullet / preview. A scene holds no
 pybullet or trimesh objects, only numbers, so it can be tested and drawn without a simulator.
@@ -26,6 +27,8 @@ class Shape:
     sphere, as in SDF). ``size`` is the box's full x, y, z; a cylinder has ``radius`` and ``length`` along its
     local z; a sphere has ``radius``; a mesh has ``vertices`` (N × 3, already scaled, in the shape's frame) and
     ``faces`` (M × 3 indices); a plane has ``normal`` (local). ``model``/``link``/``name`` say where it came from.
+    ``color`` is a visual's material colour, RGBA from 0 to 1 (None for a collision, or a visual whose material
+    is not known: drawn grey).
     """
 
     kind: ShapeKind
@@ -41,6 +44,7 @@ class Shape:
     link: str = ""
     name: str = ""
     static: bool = True
+    color: Tuple[float, float, float, float] | None = None
 
     @property
     def label(self) -> str:
@@ -49,7 +53,9 @@ class Shape:
 
 @dataclass
 class Scene:
-    """A world read from a file: its shapes and what the reader had to say about it."""
+    """A world read from a file: its collision shapes, its visual shapes (``visuals``, each with its colour, in
+    the world frame: walls, obstacles and floor markings as a camera sees them), and what the reader had to say
+    about it."""
 
     source: Path | None
     sdf_version: str | None = None
@@ -58,6 +64,7 @@ class Scene:
     findings: list[Finding] = field(default_factory=list)
     models: list[str] = field(default_factory=list)
     model_poses: dict[str, tuple[float, ...]] = field(default_factory=dict)   # name → (x, y, z, qx, qy, qz, qw)
+    visuals: list[Shape] = field(default_factory=list)
 
     def save(self, path: str | Path) -> None:
         """Pickle the scene to ``path``: how a parent hands it to a simulator child (see :meth:`load`)."""
