@@ -30,7 +30,8 @@ def sim(world, spawn, launch_file, robot, rate, duration, lidar_no_hit):
     /gazebo/reset_world and /gazebo/reset_simulation services.
 
     Joins the master at ROS_MASTER_URI, or starts one there when none answers (and stops it on exit). Sets
-    /use_sim_time. Runs until Ctrl-C or --duration.
+    /use_sim_time. Runs until Ctrl-C or --duration. With a launch file, first warns about modules its own
+    nodes import that are not installed (see `worldgen doctor`).
     """
     from ..core.spawnpose import parse_spawn
     from ..ros.bridge.simcmd import parse_rate
@@ -40,7 +41,20 @@ def sim(world, spawn, launch_file, robot, rate, duration, lidar_no_hit):
     pace = parse_rate(rate)
     loaded = load_world(world, spawn=parse_spawn(spawn) if spawn is not None else None, robot=robot,
                         launch=launch_file)
+    _warn_about_launch_nodes(world, launch_file)
     sys.exit(run_sim(loaded, rate=pace, duration=duration, no_hit=lidar_no_hit))
+
+
+def _warn_about_launch_nodes(world: Path, launch_file: Path | None) -> None:
+    """A launch file (WORLD or --launch): a warning on stderr per module its own nodes import that is not
+    installed (sim starts no node, so it starts anyway)."""
+    from ..check.validate import input_kind
+    from ..ros.bridge.preflight import launch_warnings
+
+    launch = launch_file if launch_file is not None else world if input_kind(world) == "launch" else None
+    if launch is not None:
+        for line in launch_warnings(launch):
+            click.echo(line, err=True)
 
 
 COMMANDS = [sim]

@@ -3,9 +3,11 @@
 Each submission is a catkin package under the folder (or, when the folder holds no package, each of its
 subfolders). Its node for the task is the script named as the course names it (``stop_at_wall.py``,
 ``spin_in_circles.py``, ``drive_square.py``, ``wall_follower.py``, ``person_follower.py``), or the file named on
-the command line, or its only Python file. Every submission runs in its own master on its own port, ``jobs`` at
-once, and gets one :class:`~worldgen.check.report.Result`; a submission that cannot run is an error finding,
-never the end of the grading.
+the command line, or its only Python file. Every node's imports are looked up first, for the whole folder in one
+go (:mod:`.preflight`); a submission whose node imports a module that is not installed is not started, its result
+holding a ``runtime`` finding per missing module. Every other submission runs in its own master on its own port,
+``jobs`` at once, and gets one :class:`~worldgen.check.report.Result`; a submission that cannot run is an error
+finding, never the end of the grading.
 """
 
 from __future__ import annotations
@@ -53,6 +55,7 @@ def grade_folder(folder: Path, world_path: Path | None, *, task, target, duratio
     """One result per submission in ``folder`` (each run in its own master, ``jobs`` at once); with ``shard``
     (K, N), only the K-th of N stable shares of the submissions (:func:`worldgen.check.discover.shard`)."""
     from ...core.resources import examples_dir
+    from .preflight import blocked_result, many_findings
     from .report import result_of
     from .rosenv import import_rospy, node_python
     from .rubrics import person_loop
@@ -73,11 +76,20 @@ def grade_folder(folder: Path, world_path: Path | None, *, task, target, duratio
         found = take_shard(found, *shard, key=str)
     options = RunOptions(duration=parse_duration(duration, task), rate=rate, no_hit=no_hit, task=task, target=target,
                          person=person_loop(world.spawn) if task == "person-follow" else None)
+    planned = {s: _plan(s, task, nodes, python) for s in found}
+    missing = many_findings({str(s): p[1] for s, p in planned.items() if not isinstance(p, WorldgenError)}, python)
 
     def one(submission: Path) -> Result:
+        plan = planned[submission]
         try:
-            node = node_of(submission, task, list(nodes))
-            outcome = _run(world, node, python, options)
+            if isinstance(plan, WorldgenError):
+                raise plan
+            node, specs = plan
+            if missing[str(submission)]:
+                result = blocked_result(str(submission), world, missing[str(submission)], task)
+                result.metrics["node"] = str(node.relative_to(submission))
+                return result
+            outcome = _run(world, specs, options)
         except WorldgenError as err:
             result = Result(path=str(submission), spawn=world.spawn, spawn_source=f"from {world.spawn_source}",
                             robot=world.robot, robot_source=world.robot_source, checks=["node"])
@@ -102,12 +114,21 @@ def grade_folder(folder: Path, world_path: Path | None, *, task, target, duratio
         pool.shutdown(wait=True)
 
 
-def _run(world, node: Path, python: str, options):
-    """One submission's run; a master that could not take its free port (another job's race) is tried again."""
+def _plan(submission: Path, task: str | None, names, python: str):
+    """The submission's node file and the processes it starts, or the WorldgenError saying why it cannot run."""
     from .nodes import resolve_nodes
+
+    try:
+        node = node_of(submission, task, list(names))
+        return node, resolve_nodes([str(node)], python)
+    except WorldgenError as err:
+        return err
+
+
+def _run(world, specs, options):
+    """One submission's run; a master that could not take its free port (another job's race) is tried again."""
     from .run import run_nodes
 
-    specs = resolve_nodes([str(node)], python)
     for attempt in range(MASTER_TRIES):
         try:
             return run_nodes(world, specs, options)

@@ -7,10 +7,12 @@ from pathlib import Path
 
 def run_single(world_path: Path, node_args, *, task, target, duration, rate, spawn, robot, no_hit, fmt, junit=None,
                plot=None, csv_path=None, bag=None, force=False, robot_ns=None):
-    """Check everything (exit-2 errors before anything starts), run, write the files; returns the
+    """Check everything (exit-2 errors before anything starts; then every node's imports, a failed result
+    without starting anything when some are missing: see :mod:`.preflight`), run, write the files; returns the
     :class:`~worldgen.check.report.Result` and the report text."""
     from ...core.fsio import check_free, write_files
     from .nodes import resolve_nodes
+    from .preflight import node_findings
     from .report import result_of, run_json, run_text
     from .rosenv import import_rospy, node_python
     from .rubrics import PERSON, person_loop
@@ -25,6 +27,9 @@ def run_single(world_path: Path, node_args, *, task, target, duration, rate, spa
     nodes = resolve_nodes(list(node_args), python, search)
     if robot_ns is not None:
         world = graded_robot(world, robot_ns)
+    missing = node_findings(nodes, python)
+    if missing:
+        return _blocked(world_path, world, missing, task, fmt, junit, [n.name for n in nodes])
     options = RunOptions(duration=parse_duration(duration, task), rate=rate, no_hit=no_hit, task=task,
                          target=target, bag=None, person=person_loop(world.spawn) if task == "person-follow" else None,
                          robot_ns=robot_ns)
@@ -54,3 +59,17 @@ def run_single(world_path: Path, node_args, *, task, target, duration, rate, spa
             bag_tmp.unlink()
     text = run_json(result, task) if fmt == "json" else run_text(result, task, [n.name for n in nodes])
     return result, text
+
+
+def _blocked(world_path: Path, world, missing, task, fmt, junit, names: list[str]):
+    """A run that did not start (modules the nodes import are missing): its result, JUnit, and text."""
+    from .preflight import blocked_result, blocked_text
+    from .report import run_json
+
+    result = blocked_result(str(world_path), world, missing, task)
+    if junit is not None:
+        from ...check.report import to_junit
+        from ...core.fsio import write_files
+
+        write_files({junit: to_junit([result])}, force=True)
+    return result, run_json(result, task) if fmt == "json" else blocked_text(result, task, names)

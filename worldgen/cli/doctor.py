@@ -1,0 +1,33 @@
+"""``worldgen doctor [NODE…|FOLDER]``: are the modules the nodes import installed; one apt line for the gaps."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import click
+
+from ..core.errors import EXIT_FAILED, EXIT_OK
+
+
+@click.command("doctor")
+@click.argument("paths", nargs=-1, type=click.Path(path_type=Path))
+@click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True)
+def doctor(paths, fmt):
+    """Look up every module the rospy nodes in PATHS import (node files, or folders of them: a class's
+    submissions, catkin packages' scripts/ and nodes/) for the Python that runs the nodes, without running
+    them. Prints a table (module, needed by, provided by, state) and one `sudo apt-get install` line for every
+    missing package. With no PATHS, checks the class runtime on this machine.
+
+    Exit 0: everything found; 1: something missing; 2: a path that does not exist.
+    """
+    from ..ros.bridge.preflight import doctor_python, noetic
+    from ..ros.doctor import check_machine, check_nodes, to_json, to_text
+
+    python = doctor_python()
+    found = check_nodes(paths, python, noetic=noetic()) if paths else check_machine(python, noetic=noetic())
+    click.echo(to_json(found) if fmt == "json" else to_text(found), nl=False)
+    sys.exit(EXIT_OK if found.ok else EXIT_FAILED)
+
+
+COMMANDS = [doctor]
