@@ -379,3 +379,13 @@ def test_doctor_with_no_argument_checks_the_class_runtime(monkeypatch):
     assert result.exit_code == (1 if missing else 0)
     assert doc["packages"] == missing and doc["install"] == (f"sudo apt-get install {' '.join(missing)}"
                                                              if missing else None)
+
+
+def test_pictures_draw_quietly_beside_debians_matplotlib(tmp_path):
+    """With the class runtime's python3-matplotlib beside pip's (a --system-site-packages venv), Debian's
+    mpl_toolkits shadows pip's and matplotlib warns about its 3D projection on every import: worldgen's pictures
+    print nothing but their own line."""
+    out = subprocess.run([sys.executable, "-m", "worldgen", "preview", str(REPO / "examples" / "enclosed_room.yaml"),
+                          "-o", str(tmp_path / "room.png")], capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0, out.stderr
+    assert "Warning" not in out.stderr and (tmp_path / "room.png").stat().st_size > 10000, out.stderr

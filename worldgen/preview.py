@@ -134,8 +134,9 @@ def render(pic: Picture, rays: Sequence[Ray] | None = None) -> bytes:
     """Draw ``pic`` (and LiDAR ``rays``, if given) as PNG bytes, 800 × 800 px, the same bytes for the same input."""
     import io
 
-    import matplotlib
+    from .core.mpl import matplotlib_agg
 
+    matplotlib = matplotlib_agg()
     with matplotlib.rc_context(_default_style()):
         fig = figure(pic, rays)
         out = io.BytesIO()
@@ -145,7 +146,9 @@ def render(pic: Picture, rays: Sequence[Ray] | None = None) -> bytes:
 
 def figure(pic: Picture, rays: Sequence[Ray] | None = None):
     """The matplotlib Figure :func:`render` saves (its first axes are the plan, in metres)."""
-    import matplotlib
+    from .core.mpl import matplotlib_agg
+
+    matplotlib = matplotlib_agg()
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.collections import LineCollection
     from matplotlib.figure import Figure
@@ -203,7 +206,9 @@ def figure(pic: Picture, rays: Sequence[Ray] | None = None):
 
 def _default_style() -> dict:
     """matplotlib's default settings, so that a user's matplotlibrc cannot change the picture."""
-    import matplotlib
+    from .core.mpl import matplotlib_agg
+
+    matplotlib = matplotlib_agg()
 
     style = {k: v for k, v in matplotlib.rcParamsDefault.items() if k not in ("backend", "interactive")}
     style.update({"font.size": 9, "svg.hashsalt": "worldgen", "path.simplify": False})

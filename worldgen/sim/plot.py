@@ -14,9 +14,9 @@ def gains_label(run: dict) -> str:
 
 def plot_png(result: dict) -> bytes:
     """A PNG of the runs in ``result`` (matplotlib's Agg backend, imported here only)."""
-    import matplotlib
+    from ..core.mpl import matplotlib_agg
 
-    matplotlib.use("Agg")
+    matplotlib_agg()
     import matplotlib.pyplot as plt
 
     title = f"{result['behaviour']} — {result['world']} ({result['robot']})"

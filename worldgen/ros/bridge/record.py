@@ -10,9 +10,9 @@ import math
 
 def plot_png(world, trace: dict, result, person: dict | None = None) -> bytes:
     """A PNG of the robot's path over the world's walls (matplotlib's Agg backend, imported here only)."""
-    import matplotlib
+    from ...core.mpl import matplotlib_agg
 
-    matplotlib.use("Agg")
+    matplotlib_agg()
     import matplotlib.pyplot as plt
 
     from ...geometry.slices import footprints_between
