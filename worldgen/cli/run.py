@@ -24,6 +24,8 @@ from .drive import FiniteFloat
               help="Simulated time at R x real time, or max: as fast as the nodes keep up.")
 @click.option("--spawn", default=None, metavar="X,Y[,YAW]",
               help="Spawn pose in metres and radians. Default: the launch file's, else the spec's, else 0,0,0.")
+@click.option("--launch", "launch_file", type=click.Path(path_type=Path), default=None, metavar="FILE",
+              help="Take the robots (several: one per <group ns>), spawn poses and parameters from this launch file.")
 @click.option("--robot", default=None, metavar="burger|waffle|waffle_pi|FILE", help="Robot model or description.")
 @click.option("--robot-ns", default=None, metavar="NS",
               help="With several robots (a launch file's <group ns>s): the one to grade. Every robot is reported.")
@@ -45,7 +47,7 @@ from .drive import FiniteFloat
 @click.option("--lidar-no-hit", type=click.Choice(["inf", "zero"]), default="inf", show_default=True,
               help="What a beam that hits nothing reads: inf as in Gazebo, 0 as the real LDS-01 driver.")
 @click.option("--force", is_flag=True, help="Overwrite existing --plot/--csv/--bag/--junit files.")
-def run(world, nodes, task, target, duration, rate, spawn, robot, robot_ns, folder_world, jobs, shard, fmt, junit, plot,
+def run(world, nodes, task, target, duration, rate, spawn, launch_file, robot, robot_ns, folder_world, jobs, shard, fmt, junit, plot,
         csv_path, bag, lidar_no_hit, force):
     """Run NODE... (a .py file, PKG/TYPE, or a .launch file's nodes; `name:=value` after a node is its argument)
     on the simulated TurtleBot3 in WORLD, with a private ROS master, and report what the robot did. With --task,
@@ -67,7 +69,7 @@ def run(world, nodes, task, target, duration, rate, spawn, robot, robot_ns, fold
 
         results = grade_folder(world, folder_world, task=task, target=target, duration=duration, rate=pace,
                                spawn=spawn_pose, robot=robot, no_hit=lidar_no_hit, jobs=jobs, nodes=nodes,
-                               shard=shard_k_n)
+                               shard=shard_k_n, launch=launch_file)
         _write_reports(results, fmt, junit)
         sys.exit(EXIT_OK if all(r.ok for r in results) else EXIT_FAILED)
     if shard_k_n is not None:
@@ -79,7 +81,7 @@ def run(world, nodes, task, target, duration, rate, spawn, robot, robot_ns, fold
 
     result, text = run_single(world, nodes, task=task, target=target, duration=duration, rate=pace,
                               spawn=spawn_pose, robot=robot, no_hit=lidar_no_hit, fmt=fmt, junit=junit, plot=plot,
-                              csv_path=csv_path, bag=bag, force=force, robot_ns=robot_ns)
+                              csv_path=csv_path, bag=bag, force=force, robot_ns=robot_ns, launch=launch_file)
     click.echo(text, nl=False)
     sys.exit(EXIT_OK if result.ok else EXIT_FAILED)
 

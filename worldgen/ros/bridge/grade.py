@@ -51,7 +51,7 @@ def node_of(submission: Path, task: str | None, names: list[str]) -> Path:
 
 
 def grade_folder(folder: Path, world_path: Path | None, *, task, target, duration, rate, spawn, robot, no_hit, jobs,
-                 nodes=(), shard: tuple[int, int] | None = None) -> list[Result]:
+                 nodes=(), shard: tuple[int, int] | None = None, launch=None) -> list[Result]:
     """One result per submission in ``folder`` (each run in its own master, ``jobs`` at once); with ``shard``
     (K, N), only the K-th of N stable shares of the submissions (:func:`worldgen.check.discover.shard`)."""
     from ...core.resources import examples_dir
@@ -65,7 +65,7 @@ def grade_folder(folder: Path, world_path: Path | None, *, task, target, duratio
 
     import_rospy()
     python = node_python()
-    world = load_world(world_path or examples_dir() / "enclosed_room.yaml", spawn=spawn, robot=robot)
+    world = load_world(world_path or examples_dir() / "enclosed_room.yaml", spawn=spawn, robot=robot, launch=launch)
     found = submissions(folder)
     if not found:
         raise InputError("holds no submissions (no catkin packages, no folders)", path=folder,

@@ -6,7 +6,7 @@ from pathlib import Path
 
 
 def run_single(world_path: Path, node_args, *, task, target, duration, rate, spawn, robot, no_hit, fmt, junit=None,
-               plot=None, csv_path=None, bag=None, force=False, robot_ns=None):
+               plot=None, csv_path=None, bag=None, force=False, robot_ns=None, launch=None):
     """Check everything (exit-2 errors before anything starts; then every node's imports, a failed result
     without starting anything when some are missing: see :mod:`.preflight`), run, write the files; returns the
     :class:`~worldgen.check.report.Result` and the report text."""
@@ -22,7 +22,7 @@ def run_single(world_path: Path, node_args, *, task, target, duration, rate, spa
     check_free([p for p in (junit, plot, csv_path, bag) if p is not None], force)
     import_rospy()
     python = node_python()
-    world = load_world(world_path, spawn=spawn, robot=robot)
+    world = load_world(world_path, spawn=spawn, robot=robot, launch=launch)
     search = [world_path.parent] if world_path.is_file() else []
     nodes = resolve_nodes(list(node_args), python, search)
     if robot_ns is not None:
