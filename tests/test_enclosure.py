@@ -2,11 +2,14 @@
 
 from __future__ import annotations
 
+import json
 import math
 
 import numpy as np
 import pytest
 
+from conftest import CliRunner
+from worldgen.cli import main
 from worldgen.geometry.enclosure import analyse, enclosure
 from worldgen.geometry.slices import footprints, section
 from worldgen.core.scene import Scene, Shape
@@ -125,6 +128,91 @@ def test_missing_wall_is_one_wide_gap_on_that_side():
     assert e.enclosed is False and len(e.gaps) == 1
     assert e.gaps[0].width == pytest.approx(4.85, abs=0.05)
     assert e.gaps[0].centre == pytest.approx((0.0, 2.5), abs=1e-3)
+
+
+def walls(*centre_lines, **kw):
+    """Building-Editor walls W0, W1, … along the given centre-lines (start, end)."""
+    return [wall(a, b, f"W{i}", **kw) for i, (a, b) in enumerate(centre_lines)]
+
+
+def gaps_of(shapes, spawn):
+    e = enclosure(Scene(None, shapes=shapes), spawn, LIDAR_Z)
+    assert e.enclosed is False
+    return e.gaps
+
+
+U_CORRIDOR = (((0, 0), (12, 0)), ((12, 0), (12, 2)), ((12, 2), (0, 2)))   # 12 m x 2 m, open at x = 0
+
+
+@pytest.mark.parametrize("spawn", [(6, 1), (3, 0.3), (11.8, 1.8), (11.9, 0.1), (0.5, 1.0)])
+def test_corridor_open_at_one_end_is_named_at_that_end(spawn):
+    # no disc wider than the corridor fits anywhere in it: the way out is its open end, 12 m from the closed one,
+    # between the walls' ends (a gap as wide as the corridor between the walls' inner faces)
+    [gap] = gaps_of(walls(*U_CORRIDOR), spawn)
+    assert gap.centre == pytest.approx((0.0, 1.0), abs=0.03)
+    assert gap.width == pytest.approx(2 - 0.15, abs=0.01)
+    assert set(gap.between) == {"room/W0", "room/W2"}
+
+
+def test_corridor_open_at_both_ends_names_both():
+    gaps = gaps_of(walls(((0, 0), (12, 0)), ((12, 2), (0, 2))), (6.0, 1.0))
+    assert sorted(round(g.centre[0], 1) for g in gaps) == [0.0, 12.0]
+    for gap in gaps:
+        assert gap.centre[1] == pytest.approx(1.0, abs=0.03) and gap.width == pytest.approx(1.85, abs=0.01)
+        assert set(gap.between) == {"room/W0", "room/W1"}
+
+
+@pytest.mark.parametrize("spawn", [(5, 1), (9, 4), (9, 1)])   # an arm, the other arm, the bend
+def test_l_shaped_corridor_open_at_both_ends_names_both_ends(spawn):
+    # east along y 0…2, then north along x 8…10 up to y = 8; open at x = 0 and at y = 8. At the bend a disc wider
+    # than the corridor fits: the neck is then a whole arm, named where it opens, not half-way along it
+    shapes = walls(((0, 0), (10, 0)), ((10, 0), (10, 8)), ((8, 8), (8, 2)), ((8, 2), (0, 2)))
+    found = {(round(g.centre[0], 1), round(g.centre[1], 1)): g for g in gaps_of(shapes, spawn)}
+    assert sorted(found) == [(0.0, 1.0), (9.0, 8.0)]
+    assert set(found[0.0, 1.0].between) == {"room/W0", "room/W3"}
+    assert set(found[9.0, 8.0].between) == {"room/W1", "room/W2"}
+    assert all(g.width == pytest.approx(1.85, abs=0.01) for g in found.values())
+
+
+@pytest.mark.parametrize("spawn", [(3, 2), (5.9, 0.1), (1, 1.5)])
+def test_three_metre_missing_wall_is_the_way_out(spawn):
+    # a 6 m x 4 m room whose west wall is 1 m long (y 3…4): the wall ends 2.925 m apart
+    shapes = walls(((0, 0), (6, 0)), ((6, 0), (6, 4)), ((6, 4), (0, 4)), ((0, 4), (0, 3)))
+    [gap] = gaps_of(shapes, spawn)
+    assert gap.width == pytest.approx(3 - 0.075, abs=0.01)
+    assert gap.centre == pytest.approx((0.0375, 1.5375), abs=0.075)   # across the west wall's thickness
+    assert set(gap.between) == {"room/W0", "room/W3"}
+
+
+def test_spawn_in_a_corner_names_the_rooms_way_out_not_the_corner():
+    # only small discs reach into the corner, whatever the room's way out: it used to be named as a 1.5 m "gap"
+    # between the two walls meeting there
+    shapes = [s for s in square_room().shapes if s.link != "Wall_2"]
+    [gap] = gaps_of(shapes, (2.2, -2.0))
+    assert gap.centre == pytest.approx((0.0, 2.5), abs=1e-3) and gap.width == pytest.approx(4.85, abs=0.05)
+
+
+def test_spawn_near_a_wide_open_end_names_it():
+    # a short, wide dead end (4 m x 3.3 m, open at x = 0), the spawn 0.4 m inside: discs far wider than the opening
+    # reach it from outside, resting on the two walls' ends
+    [gap] = gaps_of(walls(((0, 0), (4, 0)), ((4, 0), (4, 3.3)), ((4, 3.3), (0, 3.3))), (0.4, 1.65))
+    assert gap.centre == pytest.approx((0.0, 1.65), abs=0.03) and gap.width == pytest.approx(3.15, abs=0.01)
+    assert set(gap.between) == {"room/W0", "room/W2"}
+
+
+def test_open_corridor_from_a_spec_is_an_error_naming_its_segments(tmp_path):
+    spec = tmp_path / "u.yaml"
+    spec.write_text("name: ucorridor\nsegments:\n  - {from: [0, 0], to: [12, 0]}\n  - {from: [12, 0], to: [12, 2]}\n"
+                    "  - {from: [12, 2], to: [0, 2]}\nrobot: {model: burger, at: [6, 1], yaw: 0}\n")
+    out = CliRunner().invoke(main, ["validate", str(spec), "--skip-sim", "--format", "json"])
+    [r] = json.loads(out.stdout)["results"]
+    [finding] = [f for f in r["findings"] if f["check"] == "enclosed"]
+    [gap] = r["metrics"]["gaps"]
+    assert out.exit_code == 1 and finding["severity"] == "error" and gap["robot_passes"] is True
+    # the spec's walls run on past their end points by half their thickness: the opening is at x = -0.075
+    assert gap["centre"] == pytest.approx([-0.075, 1.0], abs=0.01) and gap["width"] == pytest.approx(1.85, abs=0.01)
+    assert finding["message"].startswith("the room is open: a 1.85 m gap at (-0.07, 1.00) between segment 1 "
+                                         "(from (0,0) to (12,0)) and segment 3 (from (12,2) to (0,2))")
 
 
 def test_window_above_lidar_keeps_the_room_closed_a_door_does_not():

@@ -10,10 +10,14 @@ exactly when the opening is wider than ``2·r``, whatever the walls' thickness. 
 the free space shrunk by ``r``; the smallest ``r`` at which no outside disc can cover the spawn any more is half
 the widest way out. Just below that radius the spawn's side and the outside are joined by a thin channel of
 centre space, the neck: the nearest wall points on either side of it are the gap's ends, their midpoint is where
-the gap is and their distance its width. When the far side of a neck is itself a region closed at a larger scale
-(the space behind a free-standing partition, say), the search follows that region's way out instead, which is
-the door a person would name. The gap is then closed with a thin bar and the search repeats, listing further
-ways out, widest first.
+the gap is and their distance its width. Where no disc of that radius fits round the spawn at all (a corridor open
+at its end, a room missing a wall), the neck is where the channel of slightly smaller discs that reach the spawn
+opens into the outside: the corridor's end, between the walls' ends, however far away. A neck that is itself a long
+corridor (the spawn at the bend of an open L) is named at its open end too. A spawn in a corner, which only small
+discs reach whatever the room's way out, is searched from the nearest point deeper in the room instead. When the
+far side of a neck is itself a region closed at a larger scale (the space behind a free-standing partition, say),
+the search follows that region's way out instead, which is the door a person would name. The gap is then closed
+with a thin bar and the search repeats, listing further ways out, widest first.
 
 Plain numbers in, plain numbers out: no pybullet here, only numpy and shapely (imported when first used).
 """
@@ -191,35 +195,127 @@ def _neck(space: _Space, point: tuple[float, float], lo: float, hi: float, print
           ) -> _Way | None:
     """The narrowest place between ``point`` and the outside. At radius ``hi`` the point is cut off, at ``lo``
     it is not: the neck is the bit of disc-centre space that exists at ``lo`` and joins the point's side to the
-    outside, but is gone at ``hi``. Its ends are the nearest wall points on either side of it."""
+    outside, but is gone at ``hi``. Its ends are the nearest wall points on either side of it. A neck that is a
+    long corridor is named where it opens into the outside (:func:`_corridor_end`); when no disc of radius ``hi``
+    fits on the point's side at all (the point is in such a corridor, or in a room missing a wall), where the
+    channel of smaller discs that reach the point does (:func:`_mouth`)."""
     import shapely
     from shapely.ops import nearest_points
 
-    parts, outside = space.at(hi)
+    outside = space.at(hi)[1]
     if outside is None:
         return None
     here = shapely.Point(point)
-    side = [c for c in parts if c is not outside and c.distance(here) <= hi + 1e-9]
+    side = _side(space, here, hi)
     if side:
         side = shapely.union_all(side)
         a, x = nearest_points(side, outside)
-        neck = _channel(space.at(lo)[0], side, outside, hi - lo) or ((a.x + x.x) / 2, (a.y + x.y) / 2)
-    else:   # no disc of that size fits on the point's side at all (a room missing a whole wall)
-        a, x = here, nearest_points(here, outside)[1]
-        neck = (x.x, x.y)
+        found = _channel(space.at(lo)[0], side, outside, hi - lo, 2 * hi)
+        neck = found[0] if found is not None else ((a.x + x.x) / 2, (a.y + x.y) / 2)
+    else:   # no disc of that size fits on the point's side at all (a corridor, a room missing a whole wall)
+        found = None
+        a, x = _mouth(space, here, lo, hi, outside)
+        neck = (x.x, x.y) if a.equals(here) else ((a.x + x.x) / 2, (a.y + x.y) / 2)
     ends = _gap_ends(space.obstacles, neck, (x.x - a.x, x.y - a.y), space.limit)
+    if ends is None and not side:   # near a wide opening, reached by a disc far bigger than it, resting across it
+        ends = _resting(space.obstacles, x, here, 2 * (hi - lo) + RESTING_SLACK * hi)
     if ends is None:
         return None
+    if found is not None and found[1] is not None:   # a long passage: a corridor's open end?
+        way = _corridor_end(space, ends, found[1], prints)
+        if way is not None:
+            return way
+    return _way(space, ends, prints, a, x, bool(side))
+
+
+def _corridor_end(space: _Space, ends, mouth, prints: list[Footprint]) -> _Way | None:
+    """The way out at the end of a long passage where it opens into the outside (``mouth``: the points either side
+    of that end), when the passage is a corridor: the same two walls either side at its middle (``ends``) and at
+    that end. Otherwise None (a passage among many shapes, say, whose middle names the way out)."""
+    a, x = mouth
+    there = _gap_ends(space.obstacles, ((a.x + x.x) / 2, (a.y + x.y) / 2), (x.x - a.x, x.y - a.y), space.limit)
+    if there is None:
+        return None
+    walls = _gap_between(*ends, prints).between
+    if len(walls) != 2 or set(_gap_between(*there, prints).between) != set(walls):
+        return None
+    return _way(space, there, prints, a, x, True)
+
+
+def _way(space: _Space, ends, prints: list[Footprint], a, x, real: bool) -> _Way:
+    """The way out between the wall points ``ends``, crossed from ``a`` (the point's side) to ``x`` (outside)."""
+    import shapely
+
     e1, e2 = ends
     gap = _gap_between(e1, e2, prints)
     plug = shapely.LineString([e1, e2]).buffer(2 * SLIVER, quad_segs=1)
-    return _Way(gap, plug, _beyond(space, gap, (x.x - a.x, x.y - a.y)), bool(side))
+    return _Way(gap, plug, _beyond(space, gap, (x.x - a.x, x.y - a.y)), real)
 
 
-def _channel(parts_lo, side, outside, d: float):
+RESTING_SLACK = 0.006   # the grown walls' arcs (8 segments a quarter) lie up to 0.5 % of the radius inside the disc
+
+
+def _resting(obstacles, centre, here, slack: float):
+    """The wall points a disc centred at ``centre`` rests on across an opening, seen from ``here`` on the other
+    side: the nearest wall point, and the nearest one of another wall piece the disc touches (within ``slack`` of
+    its radius) such that the line between them separates ``here`` from ``centre``. None when there is none.
+
+    Near a wide opening (a missing wall) the discs that still reach the point are far bigger than the opening and
+    rest on its two ends from outside: the half-plane search of :func:`_gap_ends` sees both ends on one side."""
+    import shapely
+    from shapely.ops import nearest_points
+
+    reach = obstacles.distance(centre) + slack
+    pieces = sorted(_components(obstacles.intersection(centre.buffer(reach, quad_segs=16))),
+                    key=lambda p: p.distance(centre))
+    if len(pieces) < 2:
+        return None
+    path = shapely.LineString([here, centre])
+    e1 = nearest_points(pieces[0], centre)[0]
+    for piece in pieces[1:]:
+        e2 = nearest_points(piece, centre)[0]
+        if shapely.LineString([e1, e2]).intersects(path):
+            return (e1.x, e1.y), (e2.x, e2.y)
+    return None
+
+
+def _side(space: _Space, here, r: float) -> list:
+    """The parts of disc-centre space at radius ``r``, other than the outside, whose discs cover ``here``."""
+    parts, outside = space.at(r)
+    return [c for c in parts if c is not outside and c.distance(here) <= r + 1e-9]
+
+
+def _mouth(space: _Space, here, lo: float, hi: float, outside):
+    """Where the point's way out is when no disc of radius ``hi`` fits on its side at all: the discs a little
+    smaller that reach it come down a channel (a corridor, a room missing a wall) too narrow for the larger ones,
+    and the way out is where that channel opens into the outside (the corridor's open end), however far from the
+    point. As (the channel's end, the nearest outside point to it); when no such channel is found, (the point,
+    the nearest outside point to it). The nearest outside point alone may lie across a wall (beside a long
+    corridor): it names no way out."""
+    import shapely
+    from shapely.ops import nearest_points
+
+    r = max(0.0, lo - (hi - lo))   # the channel a little wider than at ``lo``, so that it is surely there
+    reached = space.at(r)[1]
+    if reached is not None:
+        rest = reached.difference(outside.buffer(hi - r + 1e-6, quad_segs=4))
+        channel = [p for p in _components(rest) if p.distance(here) <= r + 1e-9]
+        if channel:
+            a, x = nearest_points(shapely.union_all(channel), outside)
+            return a, x
+    return here, nearest_points(here, outside)[1]
+
+
+LONG_PASSAGE = 1.0   # m: a passage longer than this and than it is wide is a corridor, named at its open end
+CORRIDOR_VERTICES = 5000   # … unless its outline has more vertices than this (a network round many shapes)
+
+
+def _channel(parts_lo, side, outside, d: float, width: float):
     """Where the disc-centre space at the smaller radius joins ``side`` to ``outside`` (both taken at the
     larger radius, ``d`` more): the pieces of it farther than ``d`` from both that touch both. The middle of the
-    longest such piece, or None."""
+    longest such piece (a door, a crack through a wall), and, when that piece is a long passage (longer than
+    :data:`LONG_PASSAGE` and than ``width``, the gap's), the points either side of where it opens into the
+    outside (on its side, outside), else None. None when there is no such piece."""
     import shapely
 
     grown_side, grown_out = side.buffer(d + 1e-6, quad_segs=4), outside.buffer(d + 1e-6, quad_segs=4)
@@ -230,7 +326,26 @@ def _channel(parts_lo, side, outside, d: float):
         return None
     best = max(bridges, key=lambda p: (p.length, p.area))
     c = best.representative_point()
-    return (c.x, c.y)
+    return (c.x, c.y), (_opening(best, grown_out, outside, width) if best.length / 2 > max(LONG_PASSAGE, width)
+                        else None)
+
+
+def _opening(passage, grown_out, outside, width: float):
+    """Where a long ``passage`` opens into the outside (it touches ``grown_out``, the outside grown a little, there):
+    (a point of its end, the nearest outside point to it), when it opens in one place only (within ``width``);
+    else None (a network of passages round many shapes: one with holes, or too intricate to be a corridor)."""
+    import numpy as np
+    import shapely
+    from shapely.ops import nearest_points
+
+    if len(passage.interiors) or len(passage.exterior.coords) > CORRIDOR_VERTICES:
+        return None
+    points = shapely.points(shapely.get_coordinates(passage))
+    shapely.prepare(grown_out)
+    touching = points[shapely.intersects(grown_out, shapely.buffer(points, 1e-5, quad_segs=1))]
+    if len(touching) == 0 or np.ptp(shapely.get_coordinates(touching), axis=0).max() > width:
+        return None
+    return nearest_points(touching[0], outside)
 
 
 def _gap_ends(obstacles, neck, outward, limit: float = MAX_GAP):
@@ -278,6 +393,39 @@ def _beyond(space: _Space, gap: Gap, outward, step: float = 0.05):
 MAX_DEPTH = 3   # how far the search follows a way out into further enclosed regions
 
 
+MAX_ANCHOR = 4   # how many times the search may move deeper into the room from a point in a corner
+
+
+def _anchored(space: _Space, point) -> tuple:
+    """The point the way out is searched from, and the radii that cut it off (see :meth:`_Space.critical_radius`).
+
+    A point near a corner is cut off at the radius of the discs that still fit into the corner, whatever the
+    room's way out: no disc of the larger radius fits on its side at all. The search then moves to the centre of
+    the nearest disc a little smaller that covers it (farther from the walls, in the same room), as long as that
+    one is cut off only at a clearly larger radius. Along a corridor too narrow for the larger discs that radius
+    is the same, and the point stays (its way out is the corridor's end: :func:`_mouth`)."""
+    import shapely
+    from shapely.ops import nearest_points
+
+    bounds = space.critical_radius(point)
+    for _ in range(MAX_ANCHOR):
+        if bounds is None or not bounds[1]:
+            break
+        lo, hi = bounds
+        here = shapely.Point(point)
+        if _side(space, here, hi):
+            break
+        reached = space.at(max(0.0, lo - (hi - lo)))[1]
+        if reached is None:
+            break
+        c = nearest_points(reached, here)[0]
+        deeper = space.critical_radius((c.x, c.y))
+        if deeper is None or deeper[1] <= hi + WIDTH_TOLERANCE:
+            break
+        point, bounds = (c.x, c.y), deeper
+    return point, bounds
+
+
 def _way_out(space: _Space, point, prints: list[Footprint], depth: int = 0, max_depth: int = MAX_DEPTH
              ) -> _Way | None:
     """The widest way out from ``point``, or None when nothing encloses it at any scale up to the space's limit.
@@ -286,7 +434,7 @@ def _way_out(space: _Space, point, prints: list[Footprint], depth: int = 0, max_
     partition, say). When the far side of that cut is itself a region closed at a larger scale (a disc of that
     size fits in it and cannot get out), the search closes the cut and follows that region's way out instead:
     the door a person would name."""
-    bounds = space.critical_radius(point)
+    point, bounds = _anchored(space, point)
     if bounds is None or not bounds[1]:
         return None
     way = _neck(space, point, *bounds, prints)
