@@ -20,7 +20,7 @@ LIDAR_HEIGHT = 0.17   # m: where a TurtleBot3's LDS-01 scans
 # Every example keeps its robot in a closed region (the class's worlds must pass `worldgen validate`); doors join
 # rooms. The region's area tells whether the doors open where they should: it is the rooms' floors (each polygon
 # shrunk by half its wall thickness) plus each door's passage through its wall, less the free-standing walls.
-EXAMPLES_WITH_AREA = ("enclosed_room", "two_rooms", "l_shaped_room", "angled_room")
+EXAMPLES_WITH_AREA = ("enclosed_room", "two_rooms", "l_shaped_room", "angled_room", "line_track")
 EXAMPLES_OTHER = ("room_with_window", "maze")   # obstacles in the way / a grid: see the maze test below
 
 

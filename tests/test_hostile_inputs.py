@@ -49,15 +49,29 @@ SCALARS = ["2001-13-45", "2001-02-30", "!!int abc", "!!float .", "!!binary a", "
            "[0, 0]", "[1e308, -1e308]", "[.nan, 1]", "[4, 3]", "{center: [0, 0], size: [4, 3]}",
            "{<<: *b}", "{<<: [*a, *a]}", "[[[[[[[]]]]]]]"]
 KEYS = ["name", "walls", "rooms", "robot", "obstacles", "segments", "map", "grid", "when", "x", "<<", "? a",
-        "name", "rooms"]
+        "name", "rooms", "lines", "patches"]
 
 room = st.builds(lambda c, s, n: f"  - name: {n}\n    rect: {{center: {c}, size: {s}}}\n",
                  st.sampled_from(["[0, 0]", "[1e9, 0]", "[.nan, 0]", "[a, b]", "[0]", "*a", "[0, 0, 0]"]),
                  st.sampled_from(["[4, 3]", "[0, 3]", "[-4, 3]", "[1e-12, 1e-12]", "[.inf, 1]", "[4]", "4"]),
                  st.sampled_from(["a", "b", "a", "!!int x", "'r'", "[x]"]))
+tape = st.builds(lambda p, w, c, k: f"  - {{points: {p}, width: {w}, color: {c}, closed: {k}}}\n",
+                 st.sampled_from(["[[0, 0], [1, 0]]", "[[0, 0]]", "[[0, 0], [0, 0]]", "[[0, 0], [1, 0], [0, 0]]", "[]",
+                                  "[[.nan, 0], [1, 1]]", "*b", "[[1e9, 0], [0, 0]]", "x", "[[0, 0], [1, 0], [1, 1]]"]),
+                 st.sampled_from(["0.05", "0", "-1", "1e-9", "5", ".inf", "x"]),
+                 st.sampled_from(["Gazebo/Yellow", "[1, 0, 0]", "[2, 0, 0]", "{rgba: [1, 1]}", "Yelow", "~", "*a"]),
+                 st.sampled_from(["true", "false", "yes", "x", "~"]))
+patch = st.builds(lambda shape, c: f"  - {{{shape}, color: {c}}}\n",
+                  st.sampled_from(["rect: {center: [0, 0], size: [1, 1], yaw: 7}", "rect: {center: [0, 0], size: [1]}",
+                                   "disc: {center: [0, 0], radius: 0.2}", "disc: {center: *b, radius: -1}",
+                                   "rect: {center: [0, 0], size: [1, 1]}, disc: {center: [0, 0], radius: 1}",
+                                   "name: line_0, disc: {center: [0, 0], radius: 0.2}"]),
+                  st.sampled_from(["Gazebo/Green", "[0, 1, 0, 0.5]", "7", "~"]))
 line = st.one_of(
     st.builds(lambda k, v: f"{k}: {v}\n", st.sampled_from(KEYS), st.sampled_from(SCALARS)),
     st.builds(lambda rooms: "rooms:\n" + "".join(rooms), st.lists(room, min_size=1, max_size=3)),
+    st.builds(lambda tapes: "lines:\n" + "".join(tapes), st.lists(tape, min_size=1, max_size=3)),
+    st.builds(lambda patches: "patches:\n" + "".join(patches), st.lists(patch, min_size=1, max_size=2)),
     st.builds(lambda t: f"name: {t}\n", st.text(alphabet="ab_\t :#&*!%@[]{}-\n'\"", max_size=12)),
 )
 spec_text = st.builds(lambda first, rest: first + "".join(rest),
@@ -85,6 +99,9 @@ POSES = ["0 0 0 0 0 0", "1 2 0.5 0 0 1.57", "nan 0 0 0 0 0", "1e300 0 0 0 0 0", 
 URIS = ["model://nope", "model://ground_plane", "model://sun", "file:///dev/zero", "model://../../etc",
         "https://fuel.gazebosim.org/x", "", "package://nope/x", "model://a b"]
 MESHES = ["/dev/zero", "nope.stl", "file:///etc/passwd", "", "model://x/meshes/y.dae", "m.stl", "m.obj"]
+MATERIALS = ["", "<material><diffuse>1 0 0 1</diffuse></material>", "<material><ambient>nan x</ambient></material>",
+             "<material><script><name>Gazebo/Yellow</name></script></material>", "<material><script/></material>",
+             "<material><diffuse>2 -1 1e308</diffuse></material>", "<material/>"]
 MESH_FILES = [b"", b"solid x\nendsolid x\n", b"\0" * 84, b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n# caf\xe9\n",
               b"\0" * 80 + b"\xff\xff\xff\x7f", b"v nan 0 0\nv 1e308 0 0\nv 0 1 0\nf 1 2 3\nf 1 1 1\n"]
 
@@ -116,8 +133,10 @@ def sdf_element(draw, depth=0):
         "plane": f"<plane><normal>{draw(st.sampled_from(NUMBERS))}</normal></plane>",
     }[kind]
     static = draw(st.sampled_from(["<static>1</static>", "<static>maybe</static>", ""]))
-    return (f"<model name='{name}'>{static}{pose}<link name='{name}'>{pose}<collision name='c'>{pose}"
-            f"<geometry>{geometry}</geometry></collision></link></model>")
+    material = draw(st.sampled_from(MATERIALS))
+    seen = draw(st.sampled_from(["", f"<visual name='v'>{pose}<geometry>{geometry}</geometry>{material}</visual>"]))
+    hit = draw(st.sampled_from([f"<collision name='c'>{pose}<geometry>{geometry}</geometry></collision>", ""]))
+    return f"<model name='{name}'>{static}{pose}<link name='{name}'>{pose}{hit}{seen}</link></model>"
 
 
 world_text = st.builds(

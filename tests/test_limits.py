@@ -18,7 +18,7 @@ from worldgen.cli import main
 from worldgen.core import inputs
 from worldgen.geometry import enclosure, growth, slices
 from worldgen.sdf import includes
-from worldgen.spec import maps, nodes
+from worldgen.spec import maps, model, nodes
 
 README = (REPO / "README.md").read_text(encoding="utf-8")
 
@@ -56,7 +56,8 @@ def room(half=1.5):
     f"{inputs.MAX_INPUT_BYTES // 2 ** 20} MiB", f"{inputs.MAX_SPEC_BYTES // 2 ** 20} MiB", f"{nodes.MAX_DEPTH} levels",
     f"{nodes.MAX_VALUES:,}".replace(",", " "), f"{includes.MAX_INCLUDES:,}".replace(",", " "),
     f"{includes.MAX_INCLUDE_DEPTH} deep", f"{maps.MAX_MAP_PIXELS:,}".replace(",", " "),
-    f"{maps.MAX_MAP_PIECES:,}".replace(",", " "), f"under {maps.SPECK_PIXELS} pixels"])
+    f"{maps.MAX_MAP_PIECES:,}".replace(",", " "), f"under {maps.SPECK_PIXELS} pixels",
+    f"{model.MAX_MARKINGS} lines and patches", f"{model.MAX_LINE_POINTS:,} points".replace(",", " ")])
 def test_readme_states_each_limit(number):
     section = README[README.index("## Limits"):README.index("## Design")]
     assert number in section
@@ -162,6 +163,20 @@ def test_a_bad_spec_beside_a_good_world_is_left_alone(tmp_path):
     built.with_suffix(".yaml").write_text("name: x\nwhen: 2001-13-45\nx: !!int abc\n")
     result = CliRunner().invoke(main, ["validate", "--skip-sim", str(built)])
     assert result.exit_code == 0, result.output
+
+
+@pytest.mark.parametrize("lines, words", [
+    ("".join(f"  - {{points: [[0, {i}], [1, {i}]], color: Gazebo/Red}}\n" for i in range(model.MAX_MARKINGS + 1)),
+     f"more than the {model.MAX_MARKINGS} worldgen builds"),
+    ("  - {color: Gazebo/Red, points: [" + ", ".join(f"[{i / 100}, 0]" for i in range(model.MAX_LINE_POINTS + 1))
+     + "]}\n", f"more than {model.MAX_LINE_POINTS:,} points in all"),
+])
+def test_floor_markings_are_bounded(tmp_path, lines, words):
+    spec = tmp_path / "marks.yaml"
+    spec.write_text(f"name: marks\nlines:\n{lines}")
+    start = time.perf_counter()
+    one_line_refusal(CliRunner().invoke(main, ["build", str(spec), "-o", str(tmp_path / "out")]), words, "README")
+    assert time.perf_counter() - start < 5 and not (tmp_path / "out").exists()
 
 
 # -------------------------------------------------------------------------------------------------- includes

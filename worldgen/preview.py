@@ -32,6 +32,7 @@ WINDOW_COLOUR = "#35b7d6"
 ROBOT_COLOUR = "#d62728"
 RAY_HIT_COLOUR = "#2ca02c"
 RAY_MISS_COLOUR = "#b0b0b0"
+MARKING_GREY = (0.7, 0.7, 0.7, 1.0)   # a floor marking whose colour the world does not say
 
 Ray = Tuple[float, float, float, float, bool]   # x0, y0, x1, y1, hit
 
@@ -166,6 +167,7 @@ def figure(pic: Picture, rays: Sequence[Ray] | None = None):
             ax.text(0.5, 0.5, f"nothing between {SLICE_Z[0]:g} and {SLICE_Z[1]:g} m above the floor",
                     transform=ax.transAxes, ha="center", va="center", color="#555555")
         drawn = set()
+        marked = _draw_markings(ax, pic.scene, bounds)
         for print_ in prints:
             colour = WALL_COLOUR if print_.label in pic.walls else OBSTACLE_COLOUR
             drawn.add(colour)
@@ -200,8 +202,27 @@ def figure(pic: Picture, rays: Sequence[Ray] | None = None):
         if pic.subtitle:
             ax.set_title(_shown(pic.subtitle), fontsize=8, loc="right", color="#555555")
         _scale_bar(ax, xmax - xmin)
-        _legend(fig, pic, rays, drawn)
+        _legend(fig, pic, rays, drawn, marked)
     return fig
+
+
+def _draw_markings(ax, scene: Scene, bounds: "_Bounds"):
+    """The scene's floor markings (:func:`worldgen.geometry.markings.floor_markings`: tape, painted patches) in
+    their own colours, under the walls, the higher ones over the lower; the first one's colour (for the legend),
+    or None when there are none."""
+    import shapely
+
+    from .geometry.markings import floor_markings, footprint
+
+    found = sorted(floor_markings(scene), key=lambda m: m.top)
+    for marking in found:
+        for colour in marking.colors:
+            outline = shapely.union_all([footprint(s) for s in marking.shapes if s.color == colour])
+            for patch in _patches(outline, facecolor=colour or MARKING_GREY, edgecolor="none", linewidth=0,
+                                  zorder=1.5):
+                ax.add_patch(patch)
+            bounds.add_geometry(outline)
+    return (found[0].colors[0] or MARKING_GREY) if found else None
 
 
 def _default_style() -> dict:
@@ -288,13 +309,16 @@ def _scale_bar(ax, span: float) -> None:
                                   bbox_transform=ax.transAxes))
 
 
-def _legend(fig, pic: Picture, rays, drawn: set[str]) -> None:
-    """A legend of what the picture shows, in one row below it."""
+def _legend(fig, pic: Picture, rays, drawn: set[str], marked=None) -> None:
+    """A legend of what the picture shows, in one row below it (``marked``: the colour of the first floor
+    marking, when there are any)."""
     from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
 
     handles = [Patch(color=colour, label=label) for colour, label in zip((WALL_COLOUR, OBSTACLE_COLOUR), pic.legend)
                if colour in drawn]
+    if marked is not None:
+        handles.append(Patch(facecolor=marked, edgecolor="#555555", linewidth=0.5, label="floor marking"))
     types = {m.type for m in pic.marks}
     if "door" in types:
         handles.append(Patch(color=DOOR_COLOUR, label="door"))

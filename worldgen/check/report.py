@@ -14,7 +14,8 @@ from dataclasses import dataclass, field
 
 from ..core.findings import SEVERITIES, Finding
 
-CHECK_ORDER = ("input", "parse", "sdformat", "launch", "package", "enclosed", "spawn-clear", "settle", "lidar", "spin", "stop-at-wall")
+CHECK_ORDER = ("input", "parse", "sdformat", "launch", "package", "enclosed", "spawn-clear", "camera", "settle",
+               "lidar", "spin", "stop-at-wall")
 
 
 @dataclass

@@ -5,7 +5,8 @@ the spec (:mod:`worldgen.sdf.writer`), N being the index of the geometry's merge
 (:func:`worldgen.geometry.building.build_geometry`). A merged wall is the union of the spec's room sides and
 segments that lie on its line and overlap it, so each N maps back to those: ``room 'kitchen', wall 2 (from
 (2.5,-2) to (6,-2))``, a shared wall naming every room that draws it. :func:`rename_findings` rewrites the scene's
-labels in findings' messages and places with those names.
+labels in findings' messages and places with those names, and a floor marking's link (``floor_markings/track``)
+with the spec's line or patch (``line 'track'``, at its line in the spec).
 """
 
 from __future__ import annotations
@@ -16,6 +17,7 @@ from dataclasses import replace
 from typing import Dict, List
 
 from ..core.findings import Finding
+from ..spec.model import MARKINGS_MODEL
 
 ON_LINE = 1e-3   # m: a spec side this close to a wall's centre-line lies on it
 
@@ -107,6 +109,24 @@ def wall_names(spec) -> Dict[int, str]:
     return {index: side_name(sides) for index, sides in wall_sides(spec).items()}
 
 
+_MARKING = re.compile(rf"(?:floor marking )?({MARKINGS_MODEL}/\w+)")
+
+
+def marking_labels(spec) -> Dict[str, tuple]:
+    """Each floor marking's SDF label (``floor_markings/track``) → what the spec calls it (``line 'track'``,
+    ``patch 2``) and where it is (``spec.yaml:12``)."""
+    from ..spec.markings import marking_names
+
+    found = {}
+    line_names, patch_names = marking_names(spec.lines, spec.patches)
+    for kind, names, items in (("line", line_names, spec.lines), ("patch", patch_names, spec.patches)):
+        for i, (name, item) in enumerate(zip(names, items)):
+            called = f"{kind} '{item.name}'" if item.name else f"{kind} {i + 1}"
+            where = f"{spec.source}:{item.line}" if spec.source and item.line else (spec.source or called)
+            found[f"{MARKINGS_MODEL}/{name}"] = (called, where)
+    return found
+
+
 _POINT = re.compile(r"\((-?\d+(?:\.\d+)?), (-?\d+(?:\.\d+)?)\)")
 
 
@@ -120,7 +140,8 @@ def rename_findings(findings: List[Finding], spec, near=None, sides=None) -> Lis
             sides = wall_sides(spec)
         except Exception:   # a spec that does not build has no walls to name (its own error says why)
             return findings
-    if not sides:
+    marks = marking_labels(spec)
+    if not sides and not marks:
         return findings
     label = re.escape(spec.name) + r"/Wall_(\d+)/Wall_\d+_Collision(?:_\d+)?"
     pair = re.compile(rf"between ({label}) and ({label})")
@@ -141,8 +162,13 @@ def rename_findings(findings: List[Finding], spec, near=None, sides=None) -> Lis
             return f"in {a}" if a == b else f"between {a} and {b}"
 
         def text(value):
-            return None if value is None else single.sub(one, pair.sub(both, value))
+            if value is None:
+                return None
+            value = single.sub(one, pair.sub(both, value))
+            return _MARKING.sub(lambda m: marks[m.group(1)][0] if m.group(1) in marks else m.group(0), value)
 
+        if f.where in marks:   # a marking's place is its line in the spec
+            return replace(f, message=text(f.message), where=marks[f.where][1])
         return replace(f, message=text(f.message), where=text(f.where))
 
     return [renamed(f) for f in findings]

@@ -27,6 +27,7 @@ from dataclasses import replace as dc_replace
 from pathlib import Path
 from typing import Callable, Sequence
 
+from .camera_view import check_camera
 from .checks import (GEOMETRIC_CHECKS, SDFORMAT_ABSENT, SIM_CHECKS, check_enclosed, check_parse,
                      check_spawn_clear, check_sdformat, floor_under, robot_body, sim_findings)
 from ..core.errors import InputError, SpecError, WorldFileError
@@ -446,9 +447,11 @@ def _check_world(result: Result, source: WorldSource, options: Options, tmp: Pat
         _sdformat(result, source, options, tmp)
     if scene is None:
         return [_skip_rest(result, "the world cannot be read", options)]
-    outcome = check_parse(scene)
-    result.findings += outcome.findings
-    result.metrics.update(outcome.metrics)
+    outcomes = [check_parse(scene), check_camera(scene, result.robot)]   # the camera's: None without floor markings
+    result.checks += ["camera"] if outcomes[1] is not None else []
+    for outcome in filter(None, outcomes):
+        result.findings += outcome.findings
+        result.metrics.update(outcome.metrics)
     if result.spawn is not None:
         return [_check_from(result, scene, options, tmp)]
     from .nospawn import default_spawns

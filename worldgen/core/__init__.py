@@ -1,2 +1,3 @@
 """Small shared pieces every part uses: errors, findings, file writing, safe XML, numbers, poses, the scene
-model, package lookup and the package's own data files. Nothing here imports another part of worldgen."""
+model, Gazebo's stock material colours, package lookup and the package's own data files. Nothing here imports
+another part of worldgen."""

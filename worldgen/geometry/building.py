@@ -30,7 +30,7 @@ import math
 from dataclasses import dataclass
 
 from ..core.errors import SpecError
-from ..spec.model import Material, Obstacle, Point, RobotPose, Spec
+from ..spec.model import MARKINGS_MODEL, FloorLine, FloorPatch, Material, Obstacle, Point, RobotPose, Spec
 from .joins import join_corners
 from .openings import Piece, PlacedOpening, place_holes, split_pieces
 from .runs import Run, fail, merge_edges, spec_edges
@@ -77,6 +77,8 @@ class Building:
     robot: RobotPose | None
     origin: Point          # the bounding-box centre of the walls: the model pose, as the Building Editor writes it
     bounds: tuple[float, float, float, float]   # xmin, ymin, xmax, ymax of everything built
+    lines: tuple[FloorLine, ...] = ()            # floor markings, as the spec gives them (see :mod:`.tape`)
+    patches: tuple[FloorPatch, ...] = ()
 
 
 # ------------------------------------------------------------------------------------------------- public
@@ -95,7 +97,11 @@ def build_geometry(spec: Spec) -> Building:
     if spec.name == "ground_plane" and walls:
         fail(spec, "the world cannot be named 'ground_plane': its building model would clash with the ground",
              None, "choose another name")
-    obstacle_names(spec.obstacles, spec.name, spec=spec)
+    marked = bool(spec.lines or spec.patches)
+    if spec.name == MARKINGS_MODEL and walls and marked:
+        fail(spec, f"the world cannot be named '{MARKINGS_MODEL}': its building model would clash with the model "
+             "of its lines and patches", None, "choose another name")
+    obstacle_names(spec.obstacles, spec.name, spec=spec, markings=marked)
 
     wall_points = [c for w in walls for c in w.footprint()]
     if wall_points:
@@ -103,16 +109,19 @@ def build_geometry(spec: Spec) -> Building:
         origin = ((wx0 + wx1) / 2, (wy0 + wy1) / 2)
     else:
         origin = (0.0, 0.0)
-    everything = wall_points + [c for o in spec.obstacles for c in obstacle_footprint(o)]
+    everything = wall_points + [c for o in spec.obstacles for c in obstacle_footprint(o)] + marking_extent(spec)
     bounds = bbox(everything) if everything else (0.0, 0.0, 0.0, 0.0)
-    return Building(spec.name, tuple(walls), spec.obstacles, spec.robot, origin, bounds)
+    return Building(spec.name, tuple(walls), spec.obstacles, spec.robot, origin, bounds, spec.lines, spec.patches)
 
 
-def obstacle_names(obstacles, building_name: str, *, spec: Spec | None = None) -> list[str]:
+def obstacle_names(obstacles, building_name: str, *, spec: Spec | None = None, markings: bool = False) -> list[str]:
     """Each obstacle's model name: its own, or ``obstacle_N`` (N its place in the spec, from 0). Raises
-    SpecError when two models of the world would share a name."""
+    SpecError when two models of the world would share a name (``markings``: the world has a model of floor
+    markings too)."""
     names = [o.name or f"obstacle_{i}" for i, o in enumerate(obstacles)]
     taken = {building_name: "the building", "ground_plane": "the ground plane"}
+    if markings:
+        taken[MARKINGS_MODEL] = "the floor markings"
     for i, (o, name) in enumerate(zip(obstacles, names)):
         if name in taken:
             what = (f"obstacle name '{name}'" if o.name else
@@ -132,6 +141,18 @@ def obstacle_footprint(o: Obstacle) -> list[Point]:
         return [(x + c * a - s * b, y + s * a + c * b) for a, b in ((-hx, -hy), (hx, -hy), (hx, hy), (-hx, hy))]
     r = o.radius or 0.0
     return [(x - r, y - r), (x + r, y + r)]
+
+
+def marking_extent(spec: Spec) -> list[Point]:
+    """Points whose bounding box holds the spec's lines and patches (each grown by its half width or reach)."""
+    points = []
+    for line in spec.lines:
+        h = line.width / 2
+        points += [(x + dx, y + dy) for x, y in line.points for dx, dy in ((-h, -h), (h, h))]
+    for p in spec.patches:
+        r = p.radius if p.shape == "disc" else math.hypot(*p.size) / 2
+        points += [(p.center[0] - r, p.center[1] - r), (p.center[0] + r, p.center[1] + r)]
+    return points
 
 
 # ---------------------------------------------------------------------------------------------- the walls

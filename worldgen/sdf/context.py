@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Dict, List, Tuple
+from typing import Dict, List, Set, Tuple
 
 from lxml import etree
 
@@ -31,8 +31,11 @@ class ReadContext:
     findings: List[Finding] = field(default_factory=list)
     include_stack: List[Path] = field(default_factory=list)        # the included files being read, outermost first
     missing_meshes: Dict[str, list] = field(default_factory=dict)  # uri -> [reason, fix, where, labels]
+    missing_visual_meshes: Dict[str, list] = field(default_factory=dict)   # the same, for visuals' meshes
+    unloadable_meshes: Set[str] = field(default_factory=set)       # uris a collision's warning said cannot load
     parsed: Dict[Path, object] = field(default_factory=dict)       # included files: root element, or the error
     include_count: int = 0                                         # includes read so far, at every depth
+    pose_texts: Dict[tuple, object] = field(default_factory=dict)  # (text, quat, degrees) → read-only matrix
 
     @classmethod
     def start(cls, source: Path, model_paths) -> ReadContext:

@@ -1,5 +1,6 @@
-"""The model tree placed in the world frame: every collision becomes a scene :class:`~worldgen.core.scene.Shape`
-(model ∘ nested model ∘ link ∘ collision, or the world-frame poses ``<state>`` gave)."""
+"""The model tree placed in the world frame: every collision becomes a scene
+:class:`~worldgen.core.scene.Shape` (model ∘ nested model ∘ link ∘ collision, or the world-frame poses ``<state>``
+gave), and so does every visual, with its colour, in ``scene.visuals``."""
 
 from __future__ import annotations
 
@@ -9,8 +10,9 @@ import numpy as np
 
 from ..core import poses
 from ..core.scene import Scene, Shape
+from ..geometry.markings import is_floor_marking
 from .context import ReadContext
-from .tree import Model
+from .tree import Link, Model
 
 
 def emit_models(ctx: ReadContext, models: List[Model], scene: Scene) -> None:
@@ -21,21 +23,50 @@ def emit_models(ctx: ReadContext, models: List[Model], scene: Scene) -> None:
         scene.model_poses[model.name] = (float(world[0, 3]), float(world[1, 3]), float(world[2, 3]),
                                          *poses.matrix_quat(world[:3, :3]))
         before = len(scene.shapes)
-        emit_model(model, poses.IDENTITY, model.name, scene.shapes)
+        emit_model(ctx, model, poses.IDENTITY, model.name, scene)
         if not model.static and len(scene.shapes) > before:
             ctx.note("static", "info", f"model '{model.name}' is not static; Gazebo would let the robot push it",
                      model.where, "add <static>1</static> to the model if it is meant to stay put")
 
 
-def emit_model(model: Model, parent: np.ndarray, label: str, out: List[Shape]) -> None:
-    """The shapes of ``model`` (placed in ``parent``'s frame) and of its nested models, labelled ``a::b``."""
+def emit_model(ctx: ReadContext, model: Model, parent: np.ndarray, label: str, scene: Scene) -> None:
+    """The shapes and visuals of ``model`` (placed in ``parent``'s frame) and of its nested models, labelled
+    ``a::b``."""
     world = model.world if model.world is not None else parent @ model.pose
     for link in model.links:
         link_world = link.world if link.world is not None else world @ link.pose
+        placed: dict = {}   # a visual often shares its collision's pose: placed once
         for c in link.collisions:
-            t = link_world @ c.pose
-            out.append(Shape(position=(float(t[0, 3]), float(t[1, 3]), float(t[2, 3])),
-                             orientation=poses.matrix_quat(t[:3, :3]), model=label, link=link.name,
-                             name=c.name, static=model.static, **c.shape))
+            position, orientation = _place(link_world, c.pose, placed)
+            scene.shapes.append(Shape(position=position, orientation=orientation, model=label, link=link.name,
+                                      name=c.name, static=model.static, **c.shape))
+        visuals = []
+        for v in link.visuals:
+            position, orientation = _place(link_world, v.pose, placed)
+            visuals.append(Shape(position=position, orientation=orientation, model=label, link=link.name,
+                                 name=v.name, static=model.static, color=v.color, **v.shape))
+        scene.visuals += visuals
+        if link.bare is not None:
+            _bare_link(ctx, link, label, visuals)
     for sub in model.models:
-        emit_model(sub, world, f"{label}::{sub.name}", out)
+        emit_model(ctx, sub, world, f"{label}::{sub.name}", scene)
+
+
+def _place(link_world: np.ndarray, pose: np.ndarray, placed: dict) -> tuple:
+    """The world position and orientation of a pose in the link's frame (``placed`` caches them by pose object)."""
+    if id(pose) not in placed:
+        t = link_world @ pose
+        placed[id(pose)] = ((float(t[0, 3]), float(t[1, 3]), float(t[2, 3])), poses.matrix_quat(t[:3, :3]))
+    return placed[id(pose)]
+
+
+def _bare_link(ctx: ReadContext, link: Link, label: str, visuals: List[Shape]) -> None:
+    """A link with visuals and no collision: nothing to say when every visual is a marking lying on the floor
+    (tape, a painted patch: meant to be driven over); else Gazebo lets the robot through it, which a wall-like
+    visual (5 cm or taller) makes a warning and a low one an info."""
+    if visuals and not link.unread and all(is_floor_marking(v) for v in visuals):
+        return
+    ctx.note("collision", "warning" if link.tall else "info",
+             f"link {label}/{link.name} has a <visual> but no <collision>: Gazebo lets the robot drive through it "
+             "and the LiDAR does not see it", link.bare,
+             "add a <collision> with the same geometry as the visual" if link.tall else None)

@@ -13,6 +13,7 @@ from .frames import Frames
 from .includes import read_include
 from .shapes import read_geometry
 from .tree import Collision, Link, Model
+from .visuals import read_visual
 from .values import check_unique, children, read_bool, read_pose
 
 
@@ -79,22 +80,17 @@ def read_model(ctx: ReadContext, el, f: SdfFile, parent_static: bool, frames: Fr
 
 
 def read_link(ctx: ReadContext, link: Link, el, f: SdfFile, model: Model, frames: Frames) -> None:
-    """The collisions of ``<link>`` ``el`` into ``link`` (its pose already placed); a finding for a link that
-    shows a visual but has nothing to collide with."""
+    """The collisions and visuals of ``<link>`` ``el`` into ``link`` (its pose already placed). A link that shows
+    visuals but has nothing to collide with is marked ``bare``: the emitter, which knows where it ends up, says so
+    unless it is a marking lying on the floor."""
     collisions = children(el, "collision")
     check_unique(ctx, [c.get("name") or "" for c in collisions],
                  f"collisions in {model.name}/{link.name}", f.where(el))
+    read: dict = {}   # (pose, geometry) as written → (pose, shape) read: a visual drawn like a collision reuses it
     for c in collisions:
         name = c.get("name") or "collision"
-        pose, rel = read_pose(ctx, c, f)
-        if rel and rel != link.name:
-            frame = frames.resolve(rel)
-            if frame is None:
-                ctx.note("pose", "warning", f"collision {model.name}/{link.name}/{name} has relative_to="
-                         f"'{rel}', no frame of that name; treated as relative to its link", f.where(c))
-            else:
-                pose = poses.inverse(link.pose) @ frame @ pose
         label = f"{model.name}/{link.name}/{name}"
+        pose = _pose_in_link(ctx, c, f, link, frames, f"collision {label}")
         geometry = c.find("geometry")
         if geometry is None:
             ctx.note("structure", "warning", f"collision {label} has no <geometry>; skipped", f.where(c),
@@ -103,14 +99,49 @@ def read_link(ctx: ReadContext, link: Link, el, f: SdfFile, model: Model, frames
         shape = read_geometry(ctx, geometry, f, label)
         if shape is not None:
             link.collisions.append(Collision(name, pose, shape))
+            written = _as_written(c, geometry)
+            if written is not None:
+                read.setdefault(written, (pose, shape))
     visuals = children(el, "visual")
+    for v in visuals:
+        label = f"{model.name}/{link.name}/{v.get('name') or 'visual'}"
+        written = _as_written(v, v.find("geometry")) if read else None
+        same = read.get(written) if written is not None else None
+        if same is not None:
+            visual = read_visual(ctx, v, f, label, *same)
+        else:
+            visual = read_visual(ctx, v, f, label, _pose_in_link(ctx, v, f, link, frames, f"visual {label}"))
+        if visual is not None:
+            link.visuals.append(visual)
+        else:
+            link.unread += 1
     if visuals and not collisions:
-        heights = [visual_height(v) for v in visuals]
-        tall = any(h is None or h >= 0.05 for h in heights)
-        ctx.note("collision", "warning" if tall else "info",
-                 f"link {model.name}/{link.name} has a <visual> but no <collision>: Gazebo lets the robot "
-                 "drive through it and the LiDAR does not see it", f.where(el),
-                 "add a <collision> with the same geometry as the visual" if tall else None)
+        link.bare = f.where(el)
+        link.tall = any(h is None or h >= 0.05 for h in (visual_height(v) for v in visuals))
+
+
+def _as_written(el, geometry) -> tuple | None:
+    """A collision's or visual's pose and plain geometry (box, cylinder, sphere) as written, to compare; None for
+    anything else."""
+    g = geometry[0] if geometry is not None and len(geometry) else None
+    if g is None or g.tag not in ("box", "cylinder", "sphere"):
+        return None
+    pose = el.find("pose")
+    return ((pose.text, tuple(sorted(pose.attrib.items()))) if pose is not None else None, g.tag,
+            tuple((part.tag, part.text) for part in g))
+
+
+def _pose_in_link(ctx: ReadContext, el, f: SdfFile, link: Link, frames: Frames, what: str):
+    """The pose of a collision or visual ``el`` in its link's frame (``relative_to`` another frame resolved)."""
+    pose, rel = read_pose(ctx, el, f)
+    if rel and rel != link.name:
+        frame = frames.resolve(rel)
+        if frame is None:
+            ctx.note("pose", "warning", f"{what} has relative_to='{rel}', no frame of that name; treated as "
+                     "relative to its link", f.where(el))
+        else:
+            pose = poses.inverse(link.pose) @ frame @ pose
+    return pose
 
 
 def visual_height(visual) -> Optional[float]:

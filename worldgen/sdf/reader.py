@@ -2,8 +2,9 @@
 
 ``read_world(path)`` places every ``<collision>`` in the world frame the way Gazebo does: model ∘ nested model ∘ link ∘
 collision poses (``relative_to`` included), the first ``<state>`` applied (state poses are world-frame),
-``<include>`` resolved through the model path, meshes loaded with trimesh. A file that is not XML at all raises
-:class:`~worldgen.core.errors.WorldFileError` with its line; everything else the reader notices becomes a
+``<include>`` resolved through the model path, meshes loaded with trimesh; and every ``<visual>`` the same way, with
+its material's colour, into ``scene.visuals`` (what a camera sees: :mod:`.visuals`). A file that is not XML at all
+raises :class:`~worldgen.core.errors.WorldFileError` with its line; everything else the reader notices becomes a
 :class:`~worldgen.core.findings.Finding` in ``scene.findings``, so one odd element never hides the rest of the world.
 
 Finding ids: ``sdf-version``, ``structure``, ``pose``, ``include``, ``mesh``, ``geometry``, ``sizes``, ``names``,
@@ -11,8 +12,9 @@ Finding ids: ``sdf-version``, ``structure``, ``pose``, ``include``, ``mesh``, ``
 
 The read, top-down: :func:`read_world` parses the file and starts a :class:`~.context.ReadContext`; the root's
 scope is read into a model tree (:mod:`.models`: models, links, collisions, with poses through the frame graph of
-:mod:`.frames`; shapes and meshes in :mod:`.shapes`; ``<include>`` in :mod:`.includes`); the first ``<state>``
-moves it (:mod:`.state`); :mod:`.emit` places every collision in the world frame as a scene shape.
+:mod:`.frames`; shapes and meshes in :mod:`.shapes`; visuals in :mod:`.visuals`; ``<include>`` in :mod:`.includes`);
+the first ``<state>`` moves it (:mod:`.state`); :mod:`.emit` places every collision and visual in the world frame
+as a scene shape, and says which visual-only links are not floor markings.
 """
 
 from __future__ import annotations

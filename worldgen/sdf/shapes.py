@@ -12,8 +12,14 @@ from .resolve import uri_fix
 from .values import children, fmt, read_floats
 
 
-def read_geometry(ctx: ReadContext, geometry, f: SdfFile, label: str) -> Optional[dict]:
-    """Shape keyword arguments for one ``<geometry>``; None (with a finding when it matters) when unusable."""
+def read_geometry(ctx: ReadContext, geometry, f: SdfFile, label: str, visual: bool = False) -> Optional[dict]:
+    """Shape keyword arguments for one ``<geometry>``; None (with a finding when it matters) when unusable.
+
+    A ``visual``'s geometry is read the same way, quietly: what is wrong with it is not in the robot's way, so
+    only a mesh that cannot be found or loaded is said (once per URI, as an info, by :func:`report_missing_meshes`);
+    a plane keeps its ``<size>`` (x, y, 0)."""
+    if visual:
+        ctx = _Quiet(ctx)
     kinds = children(geometry)
     if not kinds:
         ctx.note("structure", "warning", f"collision {label} has an empty <geometry>; skipped",
@@ -45,7 +51,12 @@ def read_geometry(ctx: ReadContext, geometry, f: SdfFile, label: str) -> Optiona
         norm = float(np.linalg.norm(normal))
         if norm == 0:
             return _bad_size(ctx, f"plane {label} has a zero normal", where)
-        return {"kind": "plane", "normal": tuple(float(v) for v in normal / norm)}
+        plane = {"kind": "plane", "normal": tuple(float(v) for v in normal / norm)}
+        if visual and g.findtext("size") is not None:
+            sx, sy = read_floats(ctx, g.findtext("size"), 2, (0.0, 0.0), f, g, f"size of {label}")
+            if sx > 0 and sy > 0 and not _too_large((sx, sy)):
+                plane["size"] = (sx, sy, 0.0)
+        return plane
     if g.tag == "mesh":
         return read_mesh(ctx, g, f, label)
     if g.tag == "empty":
@@ -82,22 +93,56 @@ def read_mesh(ctx: ReadContext, g, f: SdfFile, label: str) -> Optional[dict]:
     if g.find("submesh") is not None:
         ctx.note("mesh", "info", f"mesh {label} names a <submesh>; the whole mesh is used", f.where(g))
     resolved = ctx.resolver.resolve(uri, f.dir, want_dir=False)
+    quiet = isinstance(ctx, _Quiet)
     if resolved.path is None:
-        entry = ctx.missing_meshes.setdefault(uri, [resolved.reason, uri_fix(uri, resolved), f.where(g), []])
+        missing = ctx.missing_visual_meshes if quiet else ctx.missing_meshes
+        entry = missing.setdefault(uri, [f"not found ({resolved.reason})", uri_fix(uri, resolved), f.where(g), []])
         entry[3].append(label)
         return None
     try:
         vertices, faces = ctx.meshes.load(resolved.path, scale)
     except ValueError as err:
-        ctx.note("mesh", "warning", f"mesh {resolved.path} of {label} {err}; skipped", f.where(g),
-                 "re-export the mesh as .dae, .stl or .obj")
+        if quiet:
+            entry = ctx.missing_visual_meshes.setdefault(uri, [str(err), "re-export the mesh as .dae, .stl or "
+                                                                          ".obj", f.where(g), []])
+            entry[3].append(label)
+        else:
+            ctx.unloadable_meshes.add(uri)
+            ctx.note("mesh", "warning", f"mesh {resolved.path} of {label} {err}; skipped", f.where(g),
+                     "re-export the mesh as .dae, .stl or .obj")
         return None
     return {"kind": "mesh", "vertices": vertices, "faces": faces}
 
 
 def report_missing_meshes(ctx: ReadContext) -> None:
-    """One finding per mesh URI that could not be found, naming the collisions skipped for it."""
+    """One warning per mesh URI that could not be found, naming the collisions skipped for it; one info per
+    mesh URI only visuals use that could not be found or loaded (what a camera will not see)."""
     for uri, (reason, fix, where, labels) in ctx.missing_meshes.items():
-        shown = ", ".join(labels[:3]) + (f" and {len(labels) - 3} more" if len(labels) > 3 else "")
-        ctx.note("mesh", "warning", f"mesh {uri} not found ({reason}); {len(labels)} collision"
-                 f"{'s' if len(labels) > 1 else ''} skipped: {shown}", where, fix)
+        ctx.note("mesh", "warning", f"mesh {uri} {reason}; {_count(labels, 'collision')} skipped: "
+                 f"{_shown(labels)}", where, fix)
+    for uri, (reason, fix, where, labels) in ctx.missing_visual_meshes.items():
+        if uri not in ctx.missing_meshes and uri not in ctx.unloadable_meshes:   # not said already
+            ctx.note("mesh", "info", f"mesh {uri} {reason}; {_count(labels, 'visual')} skipped (a camera will "
+                     f"not see {'them' if len(labels) > 1 else 'it'}): {_shown(labels)}", where, fix)
+
+
+def _count(labels: list, what: str) -> str:
+    return f"{len(labels)} {what}{'s' if len(labels) > 1 else ''}"
+
+
+def _shown(labels: list) -> str:
+    return ", ".join(labels[:3]) + (f" and {len(labels) - 3} more" if len(labels) > 3 else "")
+
+
+class _Quiet:
+    """The read's context for a visual's geometry: the same caches and resolver, but its notes are dropped (a
+    visual's odd numbers are no obstacle; the collision beside it is checked and reported)."""
+
+    def __init__(self, ctx: ReadContext):
+        self._ctx = ctx
+
+    def note(self, *args, **kwargs) -> None:
+        pass
+
+    def __getattr__(self, name):
+        return getattr(self._ctx, name)

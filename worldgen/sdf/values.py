@@ -25,13 +25,24 @@ def read_pose(ctx: ReadContext, owner, f: SdfFile) -> Tuple[np.ndarray, Optional
         return poses.IDENTITY, None
     relative_to = (el.get("relative_to") or el.get("frame") or "").strip() or None
     quat = el.get("rotation_format", "euler_rpy") == "quat_xyzw"
+    degrees = (el.get("degrees") or "").strip().lower() in ("true", "1")
+    key = (el.text, quat, degrees)
+    known = ctx.pose_texts.get(key)   # a pose written many times (each wall's collision and visual) is read once
+    if known is not None:
+        return known, relative_to
     count = 7 if quat else 6
+    noted = len(ctx.findings)
     values = read_floats(ctx, el.text, count, (0.0,) * count, f, el, "pose")
     if quat:
-        return poses.transform(values[:3], poses.quat_matrix(*values[3:])), relative_to
-    if (el.get("degrees") or "").strip().lower() in ("true", "1"):
-        values = values[:3] + tuple(math.radians(v) for v in values[3:])
-    return poses.pose_matrix(*values), relative_to
+        matrix = poses.transform(values[:3], poses.quat_matrix(*values[3:]))
+    else:
+        if degrees:
+            values = values[:3] + tuple(math.radians(v) for v in values[3:])
+        matrix = poses.pose_matrix(*values)
+    if len(ctx.findings) == noted:   # a pose that does not parse is said every time
+        matrix.setflags(write=False)
+        ctx.pose_texts[key] = matrix
+    return matrix, relative_to
 
 
 def read_floats(ctx: ReadContext, text, count: int, default: tuple, f: SdfFile, el, what: str) -> tuple:

@@ -14,7 +14,9 @@ from pathlib import Path
 from lxml import etree
 
 from ..geometry.building import Building, Wall, build_geometry, obstacle_names
-from ..spec.model import Material, Obstacle, Spec
+from ..geometry.tape import THICKNESS, layer_bottom, tape_pieces
+from ..spec.markings import marking_names
+from ..spec.model import MARKINGS_MODEL, Material, Obstacle, Spec
 
 SDF_VERSIONS = ("1.6", "1.7", "1.8", "1.9")
 DEFAULT_SDF_VERSION = "1.6"     # Gazebo 9 and 11 (ROS Melodic and Noetic) read it
@@ -74,8 +76,9 @@ def spec_world_sdf(spec: Spec, sdf_version: str = DEFAULT_SDF_VERSION) -> str:
 
 def world_sdf(building: Building, sdf_version: str = DEFAULT_SDF_VERSION) -> str:
     """The ``.world`` text: ``<world name="default">`` holding the scene, the sun, an inline ground plane, ODE
-    physics as in the TurtleBot3 worlds, gravity, the building model, one static model per obstacle and a GUI
-    camera looking straight down on the whole building."""
+    physics as in the TurtleBot3 worlds, gravity, the building model, one static model per obstacle, the floor
+    markings' model (when the spec has lines or patches) and a GUI camera looking straight down on the whole
+    building."""
     _check_version(sdf_version)
     root = etree.Element("sdf", version=sdf_version)
     world = _el(root, "world", name="default")
@@ -91,6 +94,8 @@ def world_sdf(building: Building, sdf_version: str = DEFAULT_SDF_VERSION) -> str
         _building_model(world, building)
     for name, obstacle in zip(obstacle_names(building.obstacles, building.name), building.obstacles):
         _obstacle_model(world, name, obstacle)
+    if building.lines or building.patches:
+        _markings_model(world, building)
     _gui_camera(world, building)
     return _text(root)
 
@@ -265,3 +270,57 @@ def _obstacle_model(world, name: str, o: Obstacle) -> None:
         if tag == "visual":
             _material(element, o.material)
     _el(model, "static", "1")
+
+
+# ------------------------------------------------------------------------------------------ floor markings
+def _markings_model(world, building: Building) -> None:
+    """The spec's lines and patches: one static model, a link per patch and per line named as the spec names
+    them, holding visuals only (no ``<collision>``: the robot drives over them and its LiDAR never sees them).
+    Each piece is a box or a disc :data:`~worldgen.geometry.tape.THICKNESS` thick lying on the ground plane:
+    a patch one box or disc, a line a box per segment and a disc at each joint (:mod:`worldgen.geometry.tape`).
+    Patches come first, then lines, each a :data:`~worldgen.geometry.tape.LAYER` above the one before, so that
+    where they cross the later one is seen."""
+    line_names, patch_names = marking_names(building.lines, building.patches)
+    model = _el(world, "model", name=MARKINGS_MODEL)
+    _pose(model)
+    layer = 0
+    for name, patch in zip(patch_names, building.patches):
+        link = _el(model, "link", name=name)
+        z = layer_bottom(layer) + THICKNESS / 2
+        if patch.shape == "rect":
+            _flat_piece(link, f"{name}_Visual", patch.color, (patch.center[0], patch.center[1], z, patch.yaw),
+                        size=(patch.size[0], patch.size[1]))
+        else:
+            _flat_piece(link, f"{name}_Visual", patch.color, (patch.center[0], patch.center[1], z, 0.0),
+                        radius=patch.radius)
+        layer += 1
+    for name, line in zip(line_names, building.lines):
+        link = _el(model, "link", name=name)
+        z = layer_bottom(layer) + THICKNESS / 2
+        strips, joints = tape_pieces(line.points, line.closed)
+        for i, strip in enumerate(strips):
+            _flat_piece(link, f"{name}_Segment_{i}", line.color, (strip.center[0], strip.center[1], z, strip.yaw),
+                        size=(strip.length, line.width))
+        first = 0 if line.closed else 1   # joints are numbered by their point
+        for i, (x, y) in enumerate(joints):
+            _flat_piece(link, f"{name}_Joint_{first + i}", line.color, (x, y, z, 0.0), radius=line.width / 2)
+        layer += 1
+    _el(model, "static", "1")
+
+
+def _flat_piece(link, name: str, material: Material, pose: tuple[float, float, float, float],
+                size: tuple[float, float] | None = None, radius: float | None = None) -> None:
+    """One ``<visual>`` lying on the floor: a box ``size`` (x, y) or a disc of ``radius``, THICKNESS thick,
+    centred at ``pose`` (x, y, z, yaw)."""
+    visual = _el(link, "visual", name=name)
+    _el(visual, "cast_shadows", "0")
+    x, y, z, yaw = pose
+    _pose(visual, x, y, z, yaw=yaw)
+    geometry = _el(visual, "geometry")
+    if size is not None:
+        _el(_el(geometry, "box"), "size", _vec(size[0], size[1], THICKNESS))
+    else:
+        cylinder = _el(geometry, "cylinder")
+        _el(cylinder, "radius", fmt(radius))
+        _el(cylinder, "length", fmt(THICKNESS))
+    _material(visual, material)

@@ -4,7 +4,8 @@ immutable dataclasses of :mod:`worldgen.spec.model`.
 The entry points are here (``load_spec``, ``parse_spec``, ``spec_beside``, ``starter_spec``), and ``read_spec``,
 which reads a spec's top level. The text is composed into line-numbered YAML nodes (:mod:`.nodes`); each part is
 read by a function of its own (:mod:`.walls`: wall style, rooms, segments, openings; :mod:`.objects`: obstacles,
-robot; :mod:`.grid_spec`: an ASCII grid; :mod:`.maps`: a map_server map), each value by one of :mod:`.values`.
+robot; :mod:`.markings`: lines and patches on the floor; :mod:`.grid_spec`: an ASCII grid; :mod:`.maps`: a
+map_server map), each value by one of :mod:`.values`.
 Every error is a :class:`~worldgen.core.errors.SpecError` naming the file and line.
 """
 
@@ -17,7 +18,8 @@ from ..core.inputs import MAX_SPEC_BYTES, read_text_capped
 from . import values
 from .grid_spec import read_grid, read_grid_file
 from .messages import check_name, describe
-from .model import TOP_KEYS, RobotPose, Spec, WallStyle
+from .markings import read_markings
+from .model import MARKINGS_MODEL, TOP_KEYS, RobotPose, Spec, WallStyle
 from .nodes import Node, compose
 from .objects import read_obstacle, read_robot
 from .values import Source
@@ -71,19 +73,24 @@ def parse_spec(text: str, source: str | None = None) -> Spec:
     return read_spec(Source(source), compose(text, source))
 
 
-def starter_spec(name: str) -> str:
-    """The commented starter spec ``worldgen new NAME`` writes: a closed 5 m × 5 m room with a window, an
-    obstacle and the robot in the middle, a door offered commented out (``templates/spec/starter.yaml.j2``)."""
+# The specs ``worldgen new --template T NAME`` writes: template name → file under templates/.
+STARTERS = {"room": "spec/starter.yaml.j2", "line-track": "spec/line_track.yaml.j2"}
+
+
+def starter_spec(name: str, template: str = "room") -> str:
+    """The commented starter spec ``worldgen new NAME`` writes: by default (``room``) a closed 5 m × 5 m room with
+    a window, an obstacle and the robot in the middle, a door offered commented out; ``line-track`` a closed
+    4 × 3 m room with a loop of yellow tape on its floor and a Waffle Pi on the tape (``templates/spec/``)."""
     from ..core.resources import render_template
 
     check_name(name, "the world name")
-    return render_template("spec/starter.yaml.j2", name=name)
+    return render_template(STARTERS[template], name=name)
 
 
 def read_spec(src: Source, root: Node | None) -> Spec:
     """A whole spec from its composed YAML (or a map_server map's own YAML, read by :mod:`.maps`): its name and wall
-    style, then its rooms, segments, obstacles, grid, map and robot, each read by its own function, then the checks
-    across them (room and obstacle names used twice, nothing to build)."""
+    style, then its rooms, segments, obstacles, grid, map, lines and patches and robot, each read by its own
+    function, then the checks across them (names used twice, nothing to build)."""
     if root is None:
         src.fail("the spec is empty", None, hint="start from the one `worldgen new NAME` writes")
     if not isinstance(root.value, dict):
@@ -129,11 +136,19 @@ def read_spec(src: Source, root: Node | None) -> Spec:
                      hint="give every obstacle its own name")
         names[ob.name] = ob.line
 
+    lines, patches = read_markings(src, keys)
+    if lines or patches:
+        taken = [ob for ob in obstacles if ob.name == MARKINGS_MODEL]
+        if taken or (name == MARKINGS_MODEL and (rooms or segments)):
+            src.fail(f"'{MARKINGS_MODEL}' names the model of the spec's lines and patches, so "
+                     f"{'an obstacle' if taken else 'the spec'} cannot be called that",
+                     taken[0].line if taken else keys["name"].line, hint="choose another name")
     robot = read_robot(src, keys["robot"], grid_robot) if "robot" in keys else None
     if robot is None and grid_robot is not None:
         robot = RobotPose(at=grid_robot[0], yaw=grid_robot[1], line=keys["grid"].line)
-    if not (rooms or segments or obstacles):
-        src.fail("the spec has no rooms, segments, grid, map or obstacles: there is nothing to build", root.line,
+    if not (rooms or segments or obstacles or lines or patches):
+        src.fail("the spec has no rooms, segments, grid, map, obstacles, lines or patches: there is nothing to "
+                 "build", root.line,
                  hint="add a room, e.g. rooms: [{name: main, rect: {center: [0, 0], size: [5, 5]}}]")
     return Spec(name=name, style=style, rooms=rooms, segments=tuple(segments), obstacles=tuple(obstacles),
-                robot=robot, source=src.path)
+                robot=robot, source=src.path, lines=lines, patches=patches)

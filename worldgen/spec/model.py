@@ -13,6 +13,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Literal, Tuple
 
+from ..core.materials import STOCK_NAMES
+
 Point = Tuple[float, float]
 
 DEFAULT_THICKNESS = 0.15   # Building Editor default
@@ -95,6 +97,34 @@ class RobotPose:
 
 
 @dataclass(frozen=True)
+class FloorLine:
+    """A line of tape on the floor (``lines:``): a polyline through ``points``, ``width`` wide, a loop when
+    ``closed`` (the last point joined back to the first). A camera sees it; the robot and its LiDAR do not."""
+
+    points: tuple[Point, ...]
+    width: float
+    color: Material
+    closed: bool = False
+    name: str | None = None
+    line: int | None = None
+
+
+@dataclass(frozen=True)
+class FloorPatch:
+    """A coloured patch on the floor (``patches:``): a ``rect`` (``size`` turned by ``yaw`` about its ``center``)
+    or a ``disc`` (``radius``)."""
+
+    shape: Literal["rect", "disc"]
+    center: Point
+    color: Material
+    size: tuple[float, float] | None = None   # rect: along x, along y before the yaw
+    yaw: float = 0.0
+    radius: float | None = None               # disc
+    name: str | None = None
+    line: int | None = None
+
+
+@dataclass(frozen=True)
 class Spec:
     name: str
     style: WallStyle = field(default_factory=WallStyle)
@@ -103,6 +133,8 @@ class Spec:
     obstacles: tuple[Obstacle, ...] = ()
     robot: RobotPose | None = None
     source: str | None = None     # the file it came from, for messages
+    lines: tuple[FloorLine, ...] = ()
+    patches: tuple[FloorPatch, ...] = ()
 
 
 # ------------------------------------------------------------------------------------------ limits and keys
@@ -115,8 +147,14 @@ DEFAULT_CELL = 0.5
 SHAPES = ("box", "cylinder", "sphere")
 OPENING_TYPES = ("door", "window")
 EPS = 1e-9            # metres: lengths closer than this are equal (an opening that just fits)
+LINE_WIDTH = 0.05     # metres: a line's width unless it gives one (floor-marking tape)
+MAX_LINE_WIDTH = 1.0  # metres: anything wider is an area: a patch
+MAX_MARKINGS = 500    # lines and patches in one spec
+MAX_LINE_POINTS = 5000   # points of all its lines together (each becomes a box and a disc in the world)
+MARKINGS_MODEL = "floor_markings"   # the world's model holding the lines and patches, a link each
+PATCH_SHAPES = ("rect", "disc")
 
-TOP_KEYS = ("name", "walls", "rooms", "segments", "grid", "obstacles", "robot", "map")
+TOP_KEYS = ("name", "walls", "rooms", "segments", "grid", "obstacles", "robot", "map", "lines", "patches")
 WALL_KEYS = ("thickness", "height", "material")
 ROOM_KEYS = ("name", "rect", "polygon", "walls", "openings")
 RECT_KEYS = ("center", "size")
@@ -127,23 +165,19 @@ OBSTACLE_KEYS = ("shape", "name", "at", "yaw", "size", "radius", "height", "mate
 ROBOT_KEYS = ("model", "at", "yaw")
 GRID_KEYS = ("cell", "rows", "origin", "height", "material")
 MATERIAL_KEYS = ("script", "rgba")
+LINE_KEYS = ("name", "points", "width", "color", "closed")
+PATCH_KEYS = ("name", "rect", "disc", "color")
+PATCH_RECT_KEYS = ("center", "size", "yaw")
+DISC_KEYS = ("center", "radius")
 
 # How each required key is written, for "add …" hints.
 KEY_EXAMPLES = {
     "name": "name: my_world", "center": "center: [0, 0]", "size": "size: [5, 5]", "type": "type: door",
     "wall": "wall: 0", "from": "from: [0, 0]", "to": "to: [3, 0]", "shape": "shape: box", "radius": "radius: 0.2",
-    "height": "height: 0.5",
+    "height": "height: 0.5", "points": "points: [[0, 0], [2, 0], [2, 1]]", "color": "color: Gazebo/Yellow",
     "rows": "rows: |  (then the grid lines, indented)",
 }
 
-# Gazebo's stock material scripts (media/materials/scripts/gazebo.material), for "did you mean" only: other
-# script names are accepted as written, since a world may bring its own.
-GAZEBO_MATERIALS = (
-    "Gazebo/Grey", "Gazebo/DarkGrey", "Gazebo/White", "Gazebo/FlatBlack", "Gazebo/Black", "Gazebo/Red",
-    "Gazebo/RedBright", "Gazebo/Green", "Gazebo/Blue", "Gazebo/SkyBlue", "Gazebo/Yellow", "Gazebo/ZincYellow",
-    "Gazebo/DarkYellow", "Gazebo/Purple", "Gazebo/Turquoise", "Gazebo/Orange", "Gazebo/Indigo",
-    "Gazebo/Wood", "Gazebo/WoodFloor", "Gazebo/WoodPallet", "Gazebo/Bricks", "Gazebo/CeilingTiled",
-    "Gazebo/PaintedWall", "Gazebo/Residential", "Gazebo/Road", "Gazebo/Gravel", "Gazebo/Rockwall",
-    "Gazebo/RustySteel", "Gazebo/Chrome", "Gazebo/Gold", "Gazebo/Grass", "Gazebo/GreyTransparent",
-    "Gazebo/RedTransparent", "Gazebo/GreenTransparent", "Gazebo/BlueTransparent",
-)
+# Gazebo's stock material scripts (media/materials/scripts/gazebo.material, :mod:`worldgen.core.materials`), for
+# "did you mean" only: other script names are accepted as written, since a world may bring its own.
+GAZEBO_MATERIALS = STOCK_NAMES

@@ -2,8 +2,9 @@
 the value where it is read and returns it, or raises SpecError naming the file, the line and what to write instead.
 
 Blocks and lists (``mapping``, ``listing``); numbers (``number``, and the checked kinds: ``length``, ``distance``,
-``coordinate``, ``angle``, ``point``); words (``text``, ``name``); materials (``material``, ``script``, ``rgba``).
-The parts of a spec made of these are read in :mod:`.walls`, :mod:`.objects`, :mod:`.grid_spec` and :mod:`.load`.
+``coordinate``, ``angle``, ``point``); words (``text``, ``name``, ``flag``); materials (``material``, ``script``,
+``rgba``). The parts of a spec made of these are read in :mod:`.walls`, :mod:`.objects`, :mod:`.markings`,
+:mod:`.grid_spec` and :mod:`.load`.
 """
 
 from __future__ import annotations
@@ -139,16 +140,26 @@ def name(src: Source, node: Node, what: str) -> str:
     return check_name(node.value, what, path=src.path, line=node.line)
 
 
+def flag(src: Source, node: Node, what: str) -> bool:
+    """A yes/no value: YAML's ``true`` or ``false``."""
+    if not isinstance(node.value, bool):
+        src.fail(f"{what} must be true or false, not {describe(node.value)}", node.line,
+                 hint="write true or false, without quotes")
+    return node.value
+
+
 # ------------------------------------------------------------------------------------------------ materials
-def material(src: Source, node: Node, what: str) -> Material:
+def material(src: Source, node: Node, what: str, key: str = "material") -> Material:
+    """A material as written under ``key`` (``material:``, a marking's ``color:``): a script name, a colour list,
+    or ``{script: …}`` / ``{rgba: …}``."""
     value = node.value
     if isinstance(value, dict):
         keys = mapping(src, node, what, MATERIAL_KEYS)
         if len(keys) != 1:
             src.fail(f"{what} needs exactly one of 'script' or 'rgba'", node.line,
-                     hint="e.g. material: Gazebo/Wood or material: {rgba: [0.8, 0.2, 0.2, 1]}")
-        key, inner = next(iter(keys.items()))
-        if key == "rgba":
+                     hint=f"e.g. {key}: Gazebo/Wood or {key}: {{rgba: [0.8, 0.2, 0.2, 1]}}")
+        form, inner = next(iter(keys.items()))
+        if form == "rgba":
             return Material(script=None, rgba=rgba(src, inner, what))
         if not isinstance(inner.value, str):
             src.fail(f"{what} script must be text, not {describe(inner.value)}", inner.line,
@@ -159,7 +170,7 @@ def material(src: Source, node: Node, what: str) -> Material:
     if isinstance(value, str):
         return Material(script=script(src, node, what))
     src.fail(f"{what} must be a Gazebo material name or an [r, g, b, a] colour, not {describe(value)}",
-             node.line, hint="e.g. material: Gazebo/Wood or material: [0.8, 0.2, 0.2, 1]")
+             node.line, hint=f"e.g. {key}: Gazebo/Wood or {key}: [0.8, 0.2, 0.2, 1]")
 
 
 def script(src: Source, node: Node, what: str) -> str:
