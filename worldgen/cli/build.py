@@ -14,6 +14,8 @@ from pathlib import Path
 import click
 
 SDF_VERSION_CHOICES = ("1.6", "1.7", "1.8", "1.9")   # = worldgen.sdf.writer.SDF_VERSIONS, without importing it
+ROS_CHOICES = ("noetic", "humble", "jazzy")          # = worldgen.ros.targets.ROS_TARGETS
+CMD_VEL_CHOICES = ("stamped", "twist")               # = worldgen.ros.targets.CMD_VEL_CHOICES
 WORLD_SUFFIXES = (".world", ".sdf")
 
 
@@ -21,18 +23,29 @@ WORLD_SUFFIXES = (".world", ".sdf")
 @click.argument("spec", type=click.Path(exists=True, dir_okay=False, path_type=Path))
 @click.option("-o", "--output", "out_dir", type=click.Path(file_okay=False, path_type=Path), default=Path("."),
               show_default=True, help="Folder for NAME.world (created if missing).")
-@click.option("--sdf-version", type=click.Choice(SDF_VERSION_CHOICES), default="1.6", show_default=True,
-              help="SDF version to write: 1.6 for Gazebo 9/11 (ROS Melodic/Noetic), newer on request.")
+@click.option("--sdf-version", type=click.Choice(SDF_VERSION_CHOICES), default=None,
+              help="SDF version to write: 1.6 (the default) for Gazebo 9/11 (ROS Melodic/Noetic/Humble), newer "
+                   "on request; with --ros jazzy 1.8 (the default) or 1.9.")
 @click.option("--model-dir", is_flag=True,
               help="Also write the building as a model folder OUT/NAME/ (model.config + model.sdf), as the "
                    "Building Editor saves it.")
 @click.option("--package", "package_dir", type=click.Path(exists=True, file_okay=False, path_type=Path),
               metavar="DIR", help="A catkin package folder: write the world to DIR/worlds/NAME.world (instead of "
-                                  "OUT) and its launch file to DIR/launch/turtlebot3_in_NAME.launch.")
+                                  "OUT) and its launch file to DIR/launch/turtlebot3_in_NAME.launch. With --ros "
+                                  "humble|jazzy an ament_python package: DIR/launch/turtlebot3_in_NAME.launch.py "
+                                  "(and, for jazzy, DIR/worlds/NAME.sdf and DIR/params/turtlebot3_bridge.yaml).")
+@click.option("--ros", type=click.Choice(ROS_CHOICES), default="noetic", show_default=True,
+              help="The ROS and Gazebo to write for: noetic (Gazebo Classic, roslaunch XML), humble (Gazebo "
+                   "Classic, a .launch.py) or jazzy (a Gazebo Sim world NAME.sdf, a .launch.py and the "
+                   "ros_gz_bridge topics).")
+@click.option("--cmd-vel", type=click.Choice(CMD_VEL_CHOICES), default=None,
+              help="jazzy: the ROS type cmd_vel is bridged as: stamped (geometry_msgs/msg/TwistStamped, "
+                   "TurtleBot3's default) or twist (geometry_msgs/msg/Twist).")
 @click.option("--force", is_flag=True, help="Overwrite existing files.")
-def build_command(spec: Path, out_dir: Path, sdf_version: str, model_dir: bool, package_dir: Path | None,
-                  force: bool) -> None:
-    """Build the Gazebo world of the floorplan SPEC (YAML/JSON, or an ASCII grid .txt) as OUT/NAME.world."""
+def build_command(spec: Path, out_dir: Path, sdf_version: str | None, model_dir: bool, package_dir: Path | None,
+                  ros: str, cmd_vel: str | None, force: bool) -> None:
+    """Build the Gazebo world of the floorplan SPEC (YAML/JSON, or an ASCII grid .txt) as OUT/NAME.world
+    (OUT/NAME.sdf, a Gazebo Sim world, with --ros jazzy)."""
     from ..core.errors import InputError
     from ..core.fsio import write_files
     from ..geometry.building import build_geometry
@@ -48,14 +61,56 @@ def build_command(spec: Path, out_dir: Path, sdf_version: str, model_dir: bool, 
     if model_dir and not building.walls:
         raise InputError(f"{spec} has no walls, so there is no building model for --model-dir",
                          hint="leave out --model-dir, or add rooms or segments")
-    files = planned_files(building, out_dir, sdf_version=sdf_version, model_dir=model_dir,
+    if ros == "jazzy":
+        return _build_gzsim(spec, plan, building, out_dir, sdf_version, model_dir, package_dir, cmd_vel, force)
+    if cmd_vel == "stamped":
+        raise InputError(f"--cmd-vel stamped is for --ros jazzy: {ros}'s Gazebo diff drive takes a Twist",
+                         hint="leave out --cmd-vel, or pass --ros jazzy")
+    files = planned_files(building, out_dir, sdf_version=sdf_version or "1.6", model_dir=model_dir,
                           description=f"{building.name}: built by worldgen from {_text(spec.name)}")
     if package_dir is not None:   # the world moves into the package, beside its launch file
-        from ..ros.launch import package_world_files
         from ..ros.spawn import spec_spawn
 
         world_text = files.pop(out_dir / f"{building.name}.world")
-        files.update(package_world_files(package_dir, building.name, world_text, spec_spawn(plan, world_text)))
+        spawn = spec_spawn(plan, world_text)
+        if ros == "noetic":
+            from ..ros.launch import package_world_files
+
+            files.update(package_world_files(package_dir, building.name, world_text, spawn))
+        else:
+            from ..ros.launch_py import package_world_files as package_world_files_py
+
+            files.update(package_world_files_py(package_dir, building.name, world_text, spawn, ros))
+    for path in write_files(files, force=force):
+        click.echo(f"wrote {path}")
+
+
+def _build_gzsim(spec: Path, plan, building, out_dir: Path, sdf_version: str | None, model_dir: bool,
+                 package_dir: Path | None, cmd_vel: str | None, force: bool) -> None:
+    """build --ros jazzy: the Gazebo Sim world OUT/NAME.sdf, or with --package the world, its launch file and
+    the bridge's parameters in the package (a parameter file already there with the same bytes is kept)."""
+    from ..core.errors import InputError
+    from ..core.fsio import write_files
+    from ..sdf.gzsim import GZ_SDF_VERSIONS, gzsim_world
+    from ..sdf.writer import world_sdf
+
+    if model_dir:
+        raise InputError("--model-dir writes the Building Editor's model folder, which is Gazebo Classic's",
+                         hint="leave out --model-dir with --ros jazzy")
+    version = sdf_version or GZ_SDF_VERSIONS[0]
+    if version not in GZ_SDF_VERSIONS:
+        raise InputError(f"--ros jazzy writes SDF {' or '.join(GZ_SDF_VERSIONS)}, not {version}",
+                         hint="leave out --sdf-version, or pass --sdf-version 1.9")
+    classic = world_sdf(building, version)
+    world_text = gzsim_world(classic, version)
+    if package_dir is None:
+        files = {out_dir / f"{building.name}.sdf": world_text}
+    else:
+        from ..ros.launch_py import package_world_files, without_same_params
+        from ..ros.spawn import spec_spawn
+
+        files = without_same_params(package_world_files(package_dir, building.name, world_text,
+                                                        spec_spawn(plan, classic), "jazzy", cmd_vel=cmd_vel))
     for path in write_files(files, force=force):
         click.echo(f"wrote {path}")
 

@@ -1,6 +1,8 @@
-"""``worldgen launch``, ``worldgen scaffold`` and ``worldgen course``: catkin launch files and packages.
+"""``worldgen launch``, ``worldgen scaffold`` and ``worldgen course``: launch files and packages for ROS 1 (catkin,
+the default ``--ros noetic``) and ROS 2 (ament_python, ``--ros humble|jazzy``).
 
-A thin layer over :mod:`worldgen.ros.launch`, :mod:`worldgen.geometry.placement`, :mod:`worldgen.ros.scaffold` and :mod:`worldgen.ros.course`.
+A thin layer over :mod:`worldgen.ros.launch`, :mod:`worldgen.ros.launch_py`, :mod:`worldgen.geometry.placement`,
+:mod:`worldgen.ros.scaffold`, :mod:`worldgen.ros.ament`, :mod:`worldgen.ros.course` and :mod:`worldgen.ros.course2`.
 """
 
 from __future__ import annotations
@@ -12,13 +14,31 @@ from pathlib import Path
 import click
 
 from ..ros.launch import MODEL_CHOICES
+from ..ros.targets import CMD_VEL_CHOICES, DEFAULT_ROS, ROS_TARGETS
+
+ROS_HELP = ("The ROS and Gazebo to write for: noetic (ROS 1, Gazebo Classic), humble (ROS 2, Gazebo Classic) or "
+            "jazzy (ROS 2, Gazebo Sim).")
+CMD_VEL_HELP = ("jazzy: the ROS type of cmd_vel: stamped (geometry_msgs/msg/TwistStamped, TurtleBot3's default) or "
+                "twist (geometry_msgs/msg/Twist).")
+
+
+def ros_option(function):
+    """The ``--ros noetic|humble|jazzy`` option (default noetic: the ROS 1 files, unchanged)."""
+    return click.option("--ros", type=click.Choice(ROS_TARGETS), default=DEFAULT_ROS, show_default=True,
+                        help=ROS_HELP)(function)
+
+
+def cmd_vel_option(function):
+    """The ``--cmd-vel stamped|twist`` option (Jazzy's bridge and class nodes; default: stamped there)."""
+    return click.option("--cmd-vel", type=click.Choice(CMD_VEL_CHOICES), default=None, help=CMD_VEL_HELP)(function)
 
 
 @click.command("launch")
 @click.argument("world", type=click.Path(exists=True, dir_okay=False, path_type=Path))
 @click.option("--package", "package", metavar="PKG",
               help="The package whose worlds/ folder holds WORLD (default: the package around WORLD).")
-@click.option("--name", metavar="FILE", help="Launch file name (default: turtlebot3_in_<world>.launch).")
+@click.option("--name", metavar="FILE", help="Launch file name (default: turtlebot3_in_<world>.launch, or "
+                                               ".launch.py for ROS 2).")
 @click.option("--model", type=click.Choice(MODEL_CHOICES), default="optenv", show_default=True,
               help="The launch file's default robot model: optenv writes $(optenv TURTLEBOT3_MODEL burger) "
                    "(TURTLEBOT3_MODEL when it is set, else burger); env the class's exact $(env TURTLEBOT3_MODEL) "
@@ -31,14 +51,20 @@ from ..ros.launch import MODEL_CHOICES
 @click.option("-o", "--output", type=click.Path(file_okay=False, path_type=Path),
               help="Folder to write to (default: the package's launch/ folder when WORLD is in PKG/worlds/, "
                    "else the current folder).")
+@ros_option
+@cmd_vel_option
 @click.option("--force", is_flag=True, help="Overwrite an existing launch file.")
 def launch_command(world: Path, package: str | None, name: str | None, model: str, spawn: str | None,
-                   nodes: tuple[str, ...], output: Path | None, force: bool) -> None:
-    """Write the launch file that starts Gazebo with WORLD and spawns a TurtleBot3 in it."""
+                   nodes: tuple[str, ...], output: Path | None, ros: str, cmd_vel: str | None, force: bool) -> None:
+    """Write the launch file that starts Gazebo with WORLD and spawns a TurtleBot3 in it (with --ros jazzy also
+    the package's params/turtlebot3_bridge.yaml)."""
     from ..core.errors import InputError
-    from ..core.fsio import write_file
     from ..core.numbers import format_number
+    from ..core.fsio import write_file, write_files
+    from ..ros.gz_bridge_params import BRIDGE_FILE, bridge_yaml
     from ..ros.launch import default_launch_name, launch_xml, package_name_of, parse_node
+    from ..ros.launch_py import default_launch_py_name, launch_py, without_same_params
+    from ..ros.targets import cmd_vel_type
     from ..core.spawnpose import floor_pose, parse_spawn
     from ..ros.spawn import spawn_for_world
 
@@ -51,19 +77,33 @@ def launch_command(world: Path, package: str | None, name: str | None, model: st
             raise InputError("which package holds the world?", path=world,
                              hint="pass --package PKG (the launch file finds the world as $(find PKG)/worlds/...)")
         package = package_name_of(world_pkg)
-    launch_name = name or default_launch_name(world.name)
-    if not launch_name.endswith((".launch", ".launch.xml")):
-        launch_name += ".launch"
+    ros2 = ros != "noetic"
+    suffixes = (".launch.py",) if ros2 else (".launch", ".launch.xml")
+    launch_name = name or (default_launch_py_name(world.name) if ros2 else default_launch_name(world.name))
+    if not launch_name.endswith(suffixes):
+        launch_name += suffixes[0]
     if Path(launch_name).name != launch_name:
         raise InputError(f"--name {name!r} is a path, not a file name", hint="use -o DIR for the folder")
     if not re.fullmatch(r"[A-Za-z0-9_][A-Za-z0-9_.+-]*", launch_name):
-        raise InputError(f"--name {name!r} cannot be passed to roslaunch",
+        raise InputError(f"--name {name!r} cannot be passed to {'ros2 launch' if ros2 else 'roslaunch'}",
                          hint="name the launch file with letters, digits, '_', '-' and '.' only")
+    kind = cmd_vel_type(ros, cmd_vel)
     given = floor_pose(parse_spawn(spawn)) if spawn is not None else None
     pose, source = spawn_for_world(world, model, given)
-    text = launch_xml(world.name, package, model, pose, node_refs, launch_name=launch_name)
+    if ros2:
+        text = launch_py(world.name, package, ros, model, pose, node_refs, launch_name=launch_name)
+    else:
+        text = launch_xml(world.name, package, model, pose, node_refs, launch_name=launch_name)
     folder = output if output is not None else (world_pkg / "launch" if world_pkg is not None else Path("."))
-    target = write_file(folder / launch_name, text, force=force)
+    if ros == "jazzy":   # the bridge's topics, in the package beside the world (or beside the launch file)
+        params = (world_pkg or folder) / "params" / BRIDGE_FILE
+        written = write_files(without_same_params({folder / launch_name: text, params: bridge_yaml(kind)}),
+                              force=force)
+        target = written[0]
+        for extra in written[1:]:
+            click.echo(f"wrote {extra} (the ros_gz_bridge topics; install params/ with the package)")
+    else:
+        target = write_file(folder / launch_name, text, force=force)
     where = {"given": "--spawn", "spec": "the spec's robot pose", "world": "the deepest free point of the room",
              "open": "the world has no closed room: the deepest free point inside its walls"}
     click.echo(f"wrote {target} (spawn {format_number(pose[0])}, {format_number(pose[1])}, yaw "
@@ -106,20 +146,38 @@ class _CatkinStyleCommand(click.Command):
 @click.option("-m", "--maintainer", "maintainers", multiple=True, metavar="'NAME [<EMAIL>]'",
               help="A maintainer (repeatable; default: you, with NAME@todo.todo).")
 @click.option("--rosdistro", default=lambda: os.environ.get("ROS_DISTRO"), metavar="DISTRO",
-              help="The ROS distro (default: $ROS_DISTRO); ROS 1 only.")
+              help="The ROS distro (default: $ROS_DISTRO); ROS 1 only (ignored with --ros humble|jazzy).")
 @click.option("-p", "--path", "parent", type=click.Path(file_okay=False, path_type=Path), default=Path("."),
               help="Folder to create the package in (default: the current folder).")
 @click.option("--world", "world_spec", type=click.Path(exists=True, dir_okay=False, path_type=Path),
               metavar="SPEC", help="Build this floorplan spec into worlds/ and its launch file into launch/.")
+@ros_option
+@cmd_vel_option
 @click.option("--force", is_flag=True, help="Replace an existing package folder.")
 def scaffold_command(name: str, dependencies: tuple[str, ...], meta: bool, sys_deps: tuple[str, ...],
                      boost_comps: tuple[str, ...], version: str | None, description: str | None,
                      licenses: tuple[str, ...], authors: tuple[str, ...], maintainers: tuple[str, ...],
-                     rosdistro: str | None, parent: Path, world_spec: Path | None, force: bool) -> None:
+                     rosdistro: str | None, parent: Path, world_spec: Path | None, ros: str, cmd_vel: str | None,
+                     force: bool) -> None:
     """Create the catkin package NAME depending on DEPENDENCIES, as catkin_create_pkg does, with launch/,
-    worlds/ and scripts/ folders that install, and optionally a world and its launch file."""
+    worlds/ and scripts/ folders that install, and optionally a world and its launch file. With --ros
+    humble|jazzy an ament_python package as 'ros2 pkg create --build-type ament_python' makes it, with
+    launch/ and worlds/ (jazzy: params/) that setup.py installs."""
     from ..ros.scaffold import create_package, package_request
 
+    if ros != "noetic":
+        from ..ros.ament import ament_request, create_ament_package
+
+        req = ament_request(name, dependencies, sys_deps=sys_deps, boost_comps=boost_comps, version=version,
+                            description=description, licenses=licenses, authors=authors,
+                            maintainers=maintainers, meta=meta)
+        target = create_ament_package(parent, req, ros, world_spec=world_spec, cmd_vel=cmd_vel, force=force)
+        click.echo(f"wrote {target}")
+        return
+    if cmd_vel == "stamped":
+        from ..ros.targets import cmd_vel_type
+
+        cmd_vel_type(ros, cmd_vel)
     req = package_request(name, dependencies, sys_deps=sys_deps, boost_comps=boost_comps, version=version,
                           description=description, licenses=licenses, authors=authors, maintainers=maintainers,
                           meta=meta, rosdistro=rosdistro)
@@ -129,12 +187,25 @@ def scaffold_command(name: str, dependencies: tuple[str, ...], meta: bool, sys_d
 
 @click.command("course")
 @click.option("--workspace", "-w", type=click.Path(file_okay=False, path_type=Path), default=Path("."),
-              show_default=True, help="The catkin workspace; packages go to WORKSPACE/src/intro_robo.")
+              show_default=True, help="The catkin (or colcon) workspace; packages go to WORKSPACE/src/intro_robo.")
+@ros_option
+@cmd_vel_option
 @click.option("--force", is_flag=True, help="Replace an existing src/intro_robo folder.")
-def course_command(workspace: Path, force: bool) -> None:
-    """Write the class packages (labs, the enclosed-room world, its launch file) into a catkin workspace."""
+def course_command(workspace: Path, ros: str, cmd_vel: str | None, force: bool) -> None:
+    """Write the class packages (labs, the enclosed-room world, its launch file) into a catkin workspace, or
+    with --ros humble|jazzy into a colcon workspace."""
     from ..ros.course import write_course
 
+    if ros != "noetic":
+        from ..ros.course2 import write_course2
+
+        target = write_course2(workspace, ros, cmd_vel=cmd_vel, force=force)
+        click.echo(f"wrote {target}; build it with: cd {workspace} && colcon build")
+        return
+    if cmd_vel == "stamped":
+        from ..ros.targets import cmd_vel_type
+
+        cmd_vel_type(ros, cmd_vel)
     target = write_course(workspace, force=force)
     click.echo(f"wrote {target}; build it with: cd {workspace} && catkin_make")
 

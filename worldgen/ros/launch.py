@@ -84,6 +84,16 @@ def check_package_ref(name: str) -> str:
     return name
 
 
+def check_world_name(world_file_name: str) -> str:
+    """The file name of ``world_file_name`` if a launch file can pass it to Gazebo (no blanks, quotes or
+    substitution characters); InputError otherwise."""
+    world = Path(world_file_name).name
+    if not world or re.search(r"[\s$()<>&\"']", world):
+        raise InputError(f"world file name {world_file_name!r} cannot be passed to Gazebo",
+                         hint="rename the world file: letters, digits, '_', '-' and '.' only")
+    return world
+
+
 def join_ns(ns: str, name: str) -> str:
     """The full graph name of ``name`` in namespace ``ns`` (``/`` + segments; an absolute ``name`` stays)."""
     if name.startswith("/"):
@@ -113,10 +123,7 @@ def launch_xml(world_file_name: str, package: str, model: str = "optenv", spawn:
         raise InputError(f"unknown robot model {model!r}", hint=f"use one of {', '.join(MODEL_CHOICES)}")
     check_package_ref(package)
     home = check_package_ref(home or package)
-    world = Path(world_file_name).name
-    if not world or re.search(r"[\s$()<>&\"']", world):
-        raise InputError(f"world file name {world_file_name!r} cannot be passed to Gazebo",
-                         hint="rename the world file: letters, digits, '_', '-' and '.' only")
+    world = check_world_name(world_file_name)
     pose = [float(v) for v in spawn] + [0.0] * (4 - len(spawn))
     seen = {"spawn_urdf", "gazebo", "gazebo_gui"}
     for node in nodes:

@@ -100,8 +100,9 @@ def package_request(name: str, dependencies: Iterable[str] = (), *, sys_deps: It
     package name, version, email, dependency name or a ROS 2 distro."""
     validate_package_name(name)
     if rosdistro and rosdistro.lower() in ROS2_DISTROS:
-        raise InputError(f"{rosdistro} is a ROS 2 distro; worldgen scaffolds catkin (ROS 1) packages",
-                         hint="use 'ros2 pkg create' for ROS 2, or --rosdistro noetic")
+        raise InputError(f"{rosdistro} is a ROS 2 distro; without --ros worldgen scaffolds catkin (ROS 1) packages",
+                         hint="pass --ros humble or --ros jazzy for an ament_python package, or --rosdistro "
+                              "noetic")
     version = version or "0.0.0"
     if not VERSION.match(version):
         raise InputError(f"invalid package version {version!r}", hint="use MAJOR.MINOR.PATCH, e.g. 0.1.0")
