@@ -211,11 +211,14 @@ def test_camera_looks_straight_down_on_the_whole_building():
 
 def test_versions_and_model_folder():
     from worldgen.cli.build import SDF_VERSION_CHOICES, build_command
+    from worldgen.ros.targets import SDF_VERSION
     from worldgen.sdf.writer import DEFAULT_SDF_VERSION
 
     # the command lists the versions itself (so that the CLI starts without lxml); they must be the writer's
     assert SDF_VERSION_CHOICES == SDF_VERSIONS
-    assert [p.default for p in build_command.params if p.name == "sdf_version"] == [DEFAULT_SDF_VERSION]
+    # no default of its own: each --ros target's (noetic's and humble's the writer's, jazzy's Gazebo Sim's 1.8)
+    assert [p.default for p in build_command.params if p.name == "sdf_version"] == [None]
+    assert SDF_VERSION["noetic"] == SDF_VERSION["humble"] == DEFAULT_SDF_VERSION and SDF_VERSION["jazzy"] == "1.8"
     building = build_geometry(Spec("lab", rooms=(rect_room("r", 0, 0, 4, 3),)))
     for version in SDF_VERSIONS:
         assert etree.fromstring(world_sdf(building, version).encode()).get("version") == version

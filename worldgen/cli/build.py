@@ -49,6 +49,7 @@ def build_command(spec: Path, out_dir: Path, sdf_version: str | None, model_dir:
     from ..core.errors import InputError
     from ..core.fsio import write_files
     from ..geometry.building import build_geometry
+    from ..ros.targets import SDF_VERSION
     from ..sdf.writer import planned_files
     from ..spec.load import load_spec
 
@@ -66,7 +67,7 @@ def build_command(spec: Path, out_dir: Path, sdf_version: str | None, model_dir:
     if cmd_vel == "stamped":
         raise InputError(f"--cmd-vel stamped is for --ros jazzy: {ros}'s Gazebo diff drive takes a Twist",
                          hint="leave out --cmd-vel, or pass --ros jazzy")
-    files = planned_files(building, out_dir, sdf_version=sdf_version or "1.6", model_dir=model_dir,
+    files = planned_files(building, out_dir, sdf_version=sdf_version or SDF_VERSION[ros], model_dir=model_dir,
                           description=f"{building.name}: built by worldgen from {_text(spec.name)}")
     if package_dir is not None:   # the world moves into the package, beside its launch file
         from ..ros.spawn import spec_spawn
