@@ -16,7 +16,8 @@ from worldgen.ros.course import write_course
 from worldgen.ros.launch_reader import read_launch
 from worldgen.ros.package_check import check_package
 
-PACKAGES = ["class_meeting_02_custom_gazebo_world", "intro_robo", "lab_a_spin_circles", "lab_a_stop_at_wall"]
+PACKAGES = ["class_meeting_02_custom_gazebo_world", "intro_robo", "lab_a_spin_circles", "lab_a_stop_at_wall",
+            "lab_b_line_follower"]
 
 
 @pytest.fixture(scope="module")
@@ -51,13 +52,28 @@ def test_every_package_checks_clean(course):
 
 def test_launch_files_point_at_the_class_world(course):
     world = course / "class_meeting_02_custom_gazebo_world" / "worlds" / "enclosed_room.world"
-    for launch in sorted(course.rglob("*.launch")):
+    for launch in sorted(p for p in course.rglob("*.launch") if "lab_b_" not in str(p)):
         info = read_launch(launch, environ={"TURTLEBOT3_MODEL": "burger"}, ros_package_path=[])
         assert info.world_path == world and info.model == "burger"
         assert info.spawn == (0.0, 0.0, 0.0, 0.0)   # the spec's robot pose: the middle of the room
     stop = read_launch(course / "lab_a_stop_at_wall" / "launch" / "stop_at_wall.launch", environ={})
     assert [(n.package, n.type, n.name) for n in stop.nodes][-1] == ("lab_a_stop_at_wall", "stop_at_wall.py",
                                                                       "stop_at_wall")
+
+
+def test_the_line_lab_starts_a_waffle_pi_on_its_tape(course, tmp_path):
+    """Lab B's launch file starts its own world, the line_track example built byte for byte, with a Waffle Pi (the
+    camera) where the spec puts it, on the tape, and the line follower; the package depends on cv_bridge."""
+    lab = course / "lab_b_line_follower"
+    info = read_launch(lab / "launch" / "line_follower.launch", environ={}, ros_package_path=[])
+    assert info.world_path == lab / "worlds" / "line_track.world" and info.model == "waffle_pi"
+    assert info.spawn == (0.0, -0.85, 0.0, 0.0)
+    assert [(n.package, n.type) for n in info.nodes][-1] == ("lab_b_line_follower", "line_follower.py")
+    built = CliRunner().invoke(main, ["build", str(EXAMPLES / "line_track.yaml"), "-o", str(tmp_path)])
+    assert built.exit_code == 0, built.output
+    assert (lab / "worlds" / "line_track.world").read_bytes() == (tmp_path / "line_track.world").read_bytes()
+    assert "<exec_depend>cv_bridge</exec_depend>" in (lab / "package.xml").read_text()
+    assert "cv2.moments" in (lab / "scripts" / "line_follower.py").read_text()
 
 
 def test_the_course_world_is_the_built_example(course, tmp_path):

@@ -88,7 +88,7 @@ def test_catkin_lint_finds_no_problems(workspace, work):
                           capture_output=True, text=True, env=ros_env(work), timeout=120)
     problems = [ln for ln in proc.stdout.splitlines() if ": error:" in ln or ": warning:" in ln]
     assert proc.returncode == 0 and problems == [], proc.stdout + proc.stderr
-    assert "checked 9 packages" in proc.stderr
+    assert "checked 10 packages" in proc.stderr
 
 
 def our_launch_files(workspace: Path) -> list[Path]:
@@ -104,19 +104,20 @@ def test_roslaunch_loads_every_launch_file_we_write(workspace, work, stubs, corp
                                        "--node", "my_world_pkg/go.py:driver"])
     assert result.exit_code == 0, result.output
     launches = our_launch_files(workspace)
-    assert len(launches) == 6
+    assert len(launches) == 7
     env = launch_env(work, stubs, workspace, TURTLEBOT3_MODEL="burger")
     for launch, config in zip(launches, roslaunch_load([(launch, []) for launch in launches], env)):
         nodes = {n["name"]: n for n in config["nodes"]}
         ours = read_launch(launch, environ={"TURTLEBOT3_MODEL": "burger"}, ros_package_path=[str(stubs)])
+        model = "waffle_pi" if "lab_b_line_follower" in str(launch) else "burger"   # the line lab's camera robot
         assert {"gazebo", "gazebo_gui", "spawn_urdf"} <= set(nodes), launch
         assert {n.name for n in ours.nodes} == set(nodes), launch   # our reader sees the same nodes
         x, y, z, yaw = (format_number(v) for v in ours.spawn)
-        assert nodes["spawn_urdf"]["args"] == (f"-urdf -model turtlebot3_burger -x {x} -y {y} -z {z} -Y {yaw} "
+        assert nodes["spawn_urdf"]["args"] == (f"-urdf -model turtlebot3_{model} -x {x} -y {y} -z {z} -Y {yaw} "
                                                "-param robot_description"), launch
         world = Path(nodes["gazebo"]["args"])
         assert world == ours.world_path and world.is_file(), launch
-        assert '<robot name="turtlebot3_burger"' in config["params"]["/robot_description"]
+        assert f'<robot name="turtlebot3_{model}"' in config["params"]["/robot_description"]
         assert config["params"]["/use_sim_time"] is True
 
 
@@ -126,13 +127,14 @@ def test_the_course_launches_with_turtlebot3_model_unset(workspace, work, stubs)
     need_module("roslaunch")
     course = workspace / "src" / "intro_robo"
     launches = sorted(course.rglob("*.launch"))
-    assert len(launches) == 3
+    assert len(launches) == 4
     env = launch_env(work, stubs, workspace)
     assert "TURTLEBOT3_MODEL" not in env
     for launch, config in zip(launches, roslaunch_load([(launch, []) for launch in launches], env)):
         spawn = {n["name"]: n for n in config["nodes"]}["spawn_urdf"]
-        assert "-model turtlebot3_burger " in spawn["args"], launch
-        assert '<robot name="turtlebot3_burger"' in config["params"]["/robot_description"]
+        model = "waffle_pi" if "lab_b_line_follower" in str(launch) else "burger"   # its own, whatever the shell
+        assert f"-model turtlebot3_{model} " in spawn["args"], launch
+        assert f'<robot name="turtlebot3_{model}"' in config["params"]["/robot_description"]
         package = launch.parent.parent.name
         assert f"Start it with: roslaunch {package} {launch.name}" in launch.read_text()
 

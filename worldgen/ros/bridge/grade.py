@@ -20,7 +20,8 @@ from ...core.errors import InputError, WorldgenError
 from ...core.findings import Finding
 
 TASK_NODES = {"stop-at-wall": "stop_at_wall.py", "spin": "spin_in_circles.py", "drive-square": "drive_square.py",
-              "wall-follow": "wall_follower.py", "person-follow": "person_follower.py"}
+              "wall-follow": "wall_follower.py", "person-follow": "person_follower.py",
+              "line-follow": "line_follower.py"}
 MASTER_TRIES = 3
 
 
@@ -56,7 +57,7 @@ def grade_folder(folder: Path, world_path: Path | None, *, task, target, duratio
     (K, N), only the K-th of N stable shares of the submissions (:func:`worldgen.check.discover.shard`)."""
     from ...core.resources import examples_dir
     from .preflight import blocked_result, many_findings
-    from .report import result_of
+    from .report import result_of, task_context
     from .rosenv import import_rospy, node_python
     from .rubrics import person_loop
     from .run import RunOptions, parse_duration
@@ -66,6 +67,7 @@ def grade_folder(folder: Path, world_path: Path | None, *, task, target, duratio
     import_rospy()
     python = node_python()
     world = load_world(world_path or examples_dir() / "enclosed_room.yaml", spawn=spawn, robot=robot, launch=launch)
+    task_context(world, task)   # a line-follow world without tape, say: one line before anything starts
     found = submissions(folder)
     if not found:
         raise InputError("holds no submissions (no catkin packages, no folders)", path=folder,

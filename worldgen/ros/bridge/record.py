@@ -23,6 +23,7 @@ def plot_png(world, trace: dict, result, person: dict | None = None) -> bytes:
             if hasattr(polygon, "exterior"):
                 xs, ys = polygon.exterior.xy
                 ax.fill(xs, ys, color="0.55", linewidth=0)
+    _draw_markings(ax, world.scene)
     odom = trace.get("odom", [])
     xs, ys = [r[1] for r in odom], [r[2] for r in odom]
     if person and trace.get("person"):
@@ -53,6 +54,24 @@ def plot_png(world, trace: dict, result, person: dict | None = None) -> bytes:
     fig.savefig(buf, format="png", dpi=100, metadata={"Software": None})
     plt.close(fig)
     return buf.getvalue()
+
+
+def _draw_markings(ax, scene) -> None:
+    """The floor markings (tape, patches) in their own colours, under the path."""
+    from ...geometry.markings import floor_markings, footprint
+
+    drawn = False
+    for marking in floor_markings(scene):
+        for shape in marking.shapes:
+            outline = footprint(shape)
+            for polygon in getattr(outline, "geoms", [outline]):
+                if hasattr(polygon, "exterior"):
+                    xs, ys = polygon.exterior.xy
+                    color = shape.color or (0.7, 0.7, 0.7, 1.0)
+                    ax.fill(xs, ys, color=tuple(color[:3]), linewidth=0, zorder=0.5)
+                    drawn = True
+    if drawn:
+        ax.fill([], [], color="gold", label="floor marking (tape)")
 
 
 def _f(value) -> str:

@@ -37,12 +37,28 @@ def result_of(path: str, world: World, outcome: Outcome, task: str | None, targe
     if task is not None:
         from .rubrics import judge
 
-        found, numbers = judge(task, outcome.trace, outcome.metrics, target,
-                               room_side(world) if task == "wall-follow" else None)
+        found, numbers = judge(task, outcome.trace, outcome.metrics, target, task_context(world, task))
         result.checks.append(task)
         result.findings += found
         result.metrics.update(numbers)
     return result
+
+
+def task_context(world: World, task: str | None):
+    """What the task's rubric needs of the world (see :func:`.rubrics.judge`); InputError for a line-follow world
+    without tape or a robot without a camera."""
+    if task == "wall-follow":
+        return room_side(world)
+    if task == "line-follow":
+        from ...core.errors import InputError
+        from .track import camera_floor_distance, tape_track
+
+        lookahead = camera_floor_distance(world.robot)
+        if lookahead is None:
+            raise InputError(f"--task line-follow needs a robot with a camera; {world.robot} has none",
+                             hint="give --robot waffle_pi (its Raspberry Pi camera is the class's)")
+        return tape_track(world.scene, str(world.path)), lookahead
+    return None
 
 
 def run_json(result: Result, task: str | None) -> str:

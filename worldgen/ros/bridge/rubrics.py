@@ -10,6 +10,9 @@ wall-follow     after first reaching the wall, the nearest wall within target (0
                 the scans, and at least one room side travelled (the room's shorter side less twice the target)
 person-follow   a person-sized cylinder walks a loop ahead of the robot; the robot keeps 0.3–1.2 m from it in
                 ≥ 70 % of the time and never touches it
+line-follow     the camera's floor point (where the bottom of its image meets the floor ahead) within 0.1 m
+                of the tape's centre-line in ≥ 90 % of the time, a full lap of a loop (or the whole of an open
+                line) travelled along it, no contact (see :mod:`.track`)
 ==============  ===========================================================================================
 """
 
@@ -20,16 +23,17 @@ import math
 from ...core.findings import Finding
 from .metrics import stopped
 
-TASKS = ("stop-at-wall", "spin", "drive-square", "wall-follow", "person-follow")
+TASKS = ("stop-at-wall", "spin", "drive-square", "wall-follow", "person-follow", "line-follow")
 DEFAULT_TARGET = {"stop-at-wall": 0.5, "wall-follow": 0.4}
 DEFAULT_DURATION = {"stop-at-wall": 20.0, "spin": 30.0, "drive-square": 60.0, "wall-follow": 60.0,
-                    "person-follow": 60.0}
+                    "person-follow": 60.0, "line-follow": 120.0}
 STOP_TOLERANCE = 0.1
 SPIN_TURNS, SPIN_DRIFT = 2, 0.1
 CORNER, CORNER_TOLERANCE, SIDE_SPREAD, SQUARE_CLOSE = math.pi / 2, math.radians(20), 0.2, 0.3
 WALL_BAND, WALL_SHARE = 0.15, 0.8
 PERSON_NEAR, PERSON_FAR, PERSON_SHARE = 0.3, 1.2, 0.7
 PERSON = {"radius": 0.2, "height": 1.7, "ahead": 1.4, "loop_radius": 0.6, "speed": 0.1}
+LINE_BAND, LINE_SHARE, LINE_LAPS = 0.1, 0.9, 1.0
 
 
 def person_loop(spawn) -> dict:
@@ -40,12 +44,14 @@ def person_loop(spawn) -> dict:
     return {"centre": centre, "phase": yaw + math.pi, **PERSON}
 
 
-def judge(task: str, trace: dict, metrics: dict, target: float | None, room_side: float | None = None
+def judge(task: str, trace: dict, metrics: dict, target: float | None, context=None
           ) -> tuple[list[Finding], dict]:
-    """The task's findings (errors fail it) and the numbers it measured."""
+    """The task's findings (errors fail it) and the numbers it measured. ``context`` is what the task needs of
+    the world: wall-follow, the room's shorter side (m); line-follow, the tape (a :class:`~.track.Track`) and the
+    camera's floor distance (m), as a pair."""
     target = DEFAULT_TARGET.get(task) if target is None else target
     return {"stop-at-wall": _stop_at_wall, "spin": _spin, "drive-square": _square, "wall-follow": _wall_follow,
-            "person-follow": _person_follow}[task](trace, metrics, target, room_side)
+            "person-follow": _person_follow, "line-follow": _line_follow}[task](trace, metrics, target, context)
 
 
 def _contact_findings(task: str, metrics: dict, shape: str | None = None) -> list[Finding]:
@@ -210,3 +216,31 @@ def _person_follow(trace, metrics, _target, _side):
                                 f"the time (at least {PERSON_SHARE:.0%} needed)",
                                 fix="turn towards the nearest object in the scan and close the distance to it"))
     return findings, {"share_in_range": share, "min_person_distance_m": min(distances, default=None)}
+
+
+def _line_follow(trace, metrics, _target, context):
+    from .track import follow_numbers
+
+    track, lookahead = context
+    findings = _contact_findings("line-follow", metrics)
+    numbers = follow_numbers(track, trace.get("odom", []), lookahead, LINE_BAND)
+    numbers["camera_floor_distance_m"] = lookahead
+    share, laps, covered = numbers["share_on_line"], numbers["laps"], numbers["covered"]
+    lost = abs(metrics.get("rotation_rad") or 0.0) > math.tau and (metrics.get("path_length_m") or 0.0) < 1.0
+    if share < LINE_SHARE:
+        findings.append(Finding("line-follow", "error",
+                                f"the camera's floor point ({lookahead:.2f} m ahead) was within {LINE_BAND:g} m of "
+                                f"the tape ({track.name}) in {share:.0%} of the time (at least {LINE_SHARE:.0%} "
+                                "needed)" + ("; the robot mostly turned in place, as a node that never sees the "
+                                             "line does" if lost else ""),
+                                fix="mask the tape's colour in HSV (check the range on a camera image: yellow tape "
+                                    "has a hue near 30 in OpenCV) and turn towards the mask's centroid"))
+    if track.loop and laps < LINE_LAPS:
+        findings.append(Finding("line-follow", "error", f"the robot went {laps:.0%} of the way round the loop along "
+                                                        "the tape; a full lap is needed",
+                                fix="keep moving forward while steering on the line (or run longer: --duration)"))
+    elif not track.loop and covered < LINE_SHARE:
+        findings.append(Finding("line-follow", "error", f"the robot followed {covered:.0%} of the line; at least "
+                                                        f"{LINE_SHARE:.0%} is needed",
+                                fix="keep moving forward while steering on the line"))
+    return findings, numbers

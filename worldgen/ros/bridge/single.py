@@ -13,7 +13,7 @@ def run_single(world_path: Path, node_args, *, task, target, duration, rate, spa
     from ...core.fsio import check_free, write_files
     from .nodes import resolve_nodes
     from .preflight import node_findings
-    from .report import result_of, run_json, run_text
+    from .report import result_of, run_json, run_text, task_context
     from .rosenv import import_rospy, node_python
     from .rubrics import PERSON, person_loop
     from .run import RunOptions, parse_duration, run_nodes
@@ -27,6 +27,7 @@ def run_single(world_path: Path, node_args, *, task, target, duration, rate, spa
     nodes = resolve_nodes(list(node_args), python, search)
     if robot_ns is not None:
         world = graded_robot(world, robot_ns)
+    task_context(world, task)   # a line-follow world without tape, say: one line before anything starts
     missing = node_findings(nodes, python)
     if missing:
         return _blocked(world_path, world, missing, task, fmt, junit, [n.name for n in nodes])
