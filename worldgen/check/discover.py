@@ -1,12 +1,13 @@
-"""What a folder given to ``worldgen validate`` (or ``drive``) holds: catkin packages, else worlds and specs.
+"""What a folder given to ``worldgen validate`` (or ``drive``) holds: ROS packages, else worlds and specs.
 
-Any folder is searched the way a teaching assistant would look at it: a catkin workspace (only its ``src/``), a
-workspace's ``src/``, a metapackage's folder, a folder of students' submissions, nested as deep as it goes. Packages
-are found as rospack finds them (:func:`worldgen.core.packages.crawl`: sorted, hidden folders and ``CATKIN_IGNORE``
-skipped, not entering a package). A folder holding no package is searched for world files (``.world``, ``.sdf``),
-Gazebo model folders and floorplan specs (``.yaml``, ``.yml``, ``.json``) instead; a world built from a spec beside
-it (same name) is left out, the spec standing for both. Everything comes back sorted by path, so the same folder
-gives the same plan on every machine.
+Any folder is searched the way a teaching assistant would look at it: a catkin or colcon workspace (only its
+``src/``), a workspace's ``src/``, a metapackage's folder, a folder of students' submissions, nested as deep as it
+goes. Packages — catkin ones and ROS 2's ament ones alike — are found as rospack and colcon find them
+(:func:`worldgen.core.packages.crawl`: sorted, hidden folders and ``CATKIN_IGNORE``/``COLCON_IGNORE``/
+``AMENT_IGNORE`` skipped, not entering a package). A folder holding no package is searched for world files
+(``.world``, ``.sdf``), Gazebo model folders and floorplan specs (``.yaml``, ``.yml``, ``.json``) instead; a world
+built from a spec beside it (same name) is left out, the spec standing for both. Everything comes back sorted by
+path, so the same folder gives the same plan on every machine.
 
 :func:`shard` takes a stable share of planned items for ``--shard K/N``.
 """
@@ -19,7 +20,7 @@ from pathlib import Path
 from typing import Callable, List, Sequence, Tuple, TypeVar
 
 from ..core.errors import InputError
-from ..core.packages import MANIFEST, crawl
+from ..core.packages import MANIFEST, build_type, crawl
 
 WORLD_SUFFIXES = (".world", ".sdf")
 SPEC_FILE_SUFFIXES = (".yaml", ".yml", ".json")
@@ -39,7 +40,9 @@ class Found:
     @property
     def note(self) -> str:
         if self.packages:
-            return f"{self.folder}: {_count(len(self.packages), 'catkin package')} found"
+            kinds = ["ament" if build_type(p) != "catkin" else "catkin" for p in self.packages]
+            counted = [_count(kinds.count(k), f"{k} package") for k in ("catkin", "ament") if kinds.count(k)]
+            return f"{self.folder}: {' and '.join(counted)} found"
         if self.files:
             kinds = [k for k, _ in self.files]
             parts = [_count(kinds.count(k), label) for k, label in

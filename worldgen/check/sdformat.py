@@ -6,7 +6,8 @@ and returns 0 or -1. It is called through ctypes in a child process, so that its
 straight to the file descriptors) can be captured and a crash in the library cannot take the caller down.
 
 ``model://`` includes are resolved through ``SDF_PATH``: the child gets the given model folders, then
-``GAZEBO_MODEL_PATH`` and ``SDF_PATH``, then stand-ins for Gazebo's stock ``ground_plane`` and ``sun`` (which a
+``GAZEBO_MODEL_PATH``, ``SDF_PATH`` and Gazebo Sim's resource paths (as the world reader searches them), then
+stand-ins for Gazebo's stock ``ground_plane`` and ``sun`` (which a
 Gazebo install carries but libsdformat alone does not), so that a stock world does not fail for that alone.
 :func:`messages` turns what the library printed into one :class:`Message` per distinct complaint.
 """
@@ -86,11 +87,13 @@ def write_stock_stubs(folder: Path) -> Path:
 
 
 def sdf_path(model_paths=(), stubs: Path | None = None, env=None) -> str:
-    """The child's ``SDF_PATH``: ``model_paths``, ``GAZEBO_MODEL_PATH``, ``SDF_PATH``, then ``stubs`` (last, so
-    that a real ground_plane or sun on a model path wins)."""
+    """The child's ``SDF_PATH``: ``model_paths``, ``GAZEBO_MODEL_PATH``, ``SDF_PATH``, ``GZ_SIM_RESOURCE_PATH``,
+    ``IGN_GAZEBO_RESOURCE_PATH``, then ``stubs`` (last, so that a real ground_plane or sun on a model path wins)."""
+    from ..sdf.resolve import MODEL_PATH_VARIABLES
+
     env = os.environ if env is None else env
     folders = [os.fspath(Path(p).resolve()) for p in model_paths]
-    for name in ("GAZEBO_MODEL_PATH", "SDF_PATH"):
+    for name in MODEL_PATH_VARIABLES:
         folders += [p for p in env.get(name, "").split(os.pathsep) if p.strip()]
     if stubs is not None:
         folders.append(os.fspath(stubs))

@@ -1,15 +1,15 @@
 """``worldgen validate`` as a library: inputs → jobs → results.
 
 An input is a world file (``.world``, ``.sdf``, ``model.sdf``, or anything holding ``<sdf>``), a floorplan spec
-(built to SDF on the fly, exactly as ``worldgen build`` writes it), a roslaunch file (the world it starts, its
-robot model and spawn pose), a catkin package folder (each of its launch files) or any other folder (searched for
-packages, else for worlds and specs: :mod:`worldgen.check.discover`). :func:`plan` turns inputs into :class:`Job` s;
-a path that is missing or cannot be read becomes a failed job of its own (check ``input``), and only bad options,
-or every path being bad, are an :class:`~worldgen.core.errors.InputError` before anything runs; :func:`run_job`
-validates one job into its :class:`~worldgen.check.report.Result` s; :func:`run_jobs` runs many on worker threads,
-each driving its own child processes for the simulator, and returns the results in job order. With ``sdformat``
-set, libsdformat's own check runs too, in the same worker thread (the library in a child process of its own), so
-``jobs`` run that in parallel as well.
+(built to SDF on the fly, exactly as ``worldgen build`` writes it), a roslaunch or ROS 2 Python launch file (the
+world it starts, its robot model and spawn pose), a catkin or ament package folder (each of its launch files) or any
+other folder (searched for packages, else worlds and specs: :mod:`worldgen.check.discover`). :func:`plan` turns
+inputs into :class:`Job` s; a path that is missing or cannot be read becomes a failed job of its own (check
+``input``), and only bad options, or every path being bad, are an :class:`~worldgen.core.errors.InputError` before
+anything runs; :func:`run_job` validates one job into its :class:`~worldgen.check.report.Result` s;
+:func:`run_jobs` runs many on worker threads, each driving its own child processes for the simulator, and returns
+the results in job order. With ``sdformat`` set, libsdformat's own check runs too, in the same worker thread (the
+library in a child process of its own), so ``jobs`` run that in parallel as well.
 
 Spawn pose, first found: ``--spawn``; the launch file (``--launch``, or the input when it is one); the spec's
 ``robot`` entry (the input spec, or a spec of the same name beside the world). With none, the world is checked
@@ -37,7 +37,7 @@ from .report import Result
 from ..spec.load import spec_beside
 from ..spec.model import ROBOT_MODELS, SPEC_SUFFIXES
 
-LAUNCH_SUFFIXES = (".launch", ".launch.xml")
+LAUNCH_SUFFIXES = (".launch", ".launch.xml", ".launch.py", "_launch.py")
 NO_HIT_CHOICES = ("inf", "zero")
 SIM_TIMEOUT = 120.0   # s of wall time for one world's simulation
 SIM_JOB = "worldgen.check.sim_job:simulate"
@@ -245,11 +245,13 @@ def _launch_path_job(path: Path, display: str) -> Job:
 
 
 def _launch_job(path: Path, info, display: str) -> Job:
+    from ..ros.launch_reader import nothing_to_simulate
+
     job = Job(path=display, pre_checks=["launch"], findings=list(info.findings))
-    if _nodes_only(path, info):   # a package's launch file that runs nodes beside a world started elsewhere
+    why = nothing_to_simulate(path, info)   # nodes beside a world started elsewhere; a spawn other files include
+    if why is not None:
         job.package_only = True
-        job.findings.append(Finding("launch", "info", "starts no Gazebo world and spawns no robot (nodes only): "
-                                                      "nothing to simulate", where=str(path)))
+        job.findings.append(Finding("launch", "info", why, where=str(path)))
         return job
     if info.world_path is not None and Path(info.world_path).is_file():
         job.world = Path(info.world_path)
@@ -257,21 +259,11 @@ def _launch_job(path: Path, info, display: str) -> Job:
         ref = info.world_ref or "(none)"
         job.findings.append(Finding(
             "launch", "error", f"the world this launch file starts cannot be found: {ref}",
-            where=str(path), fix="make the world_name argument point to an existing world file (is the package "
-                                 "on ROS_PACKAGE_PATH?), or validate the world itself with --launch THIS_FILE"))
+            where=str(path), fix="make the world it passes to Gazebo (world_name; world or gz_args in a launch.py) "
+                                 "an existing world file (is the package on ROS_PACKAGE_PATH or in this "
+                                 "workspace?), or validate the world itself with --launch THIS_FILE"))
     _take_launch_pose(job, info, path)
     return job
-
-
-def _nodes_only(path: Path, info) -> bool:
-    """Whether a launch file has nothing to do with Gazebo: no world_name, no spawn_model, no gazebo include."""
-    if info.world_ref is not None or info.robots or info.spawn is not None:
-        return False
-    try:
-        text = path.read_text(encoding="utf-8", errors="replace")
-    except OSError:
-        return False
-    return "gazebo" not in text
 
 
 def _take_launch_pose(job: Job, info, path: Path) -> None:

@@ -41,8 +41,9 @@ def validate(paths, robot, spawn, launch_file, model_paths, fmt, junit, jobs, li
     """Check worlds for a TurtleBot3 class: the room is closed around the spawn point, the robot spawns clear
     and settles, the LiDAR sees walls, it can spin in place and stop 0.5 m before a wall.
 
-    PATH is a .world/.sdf/model.sdf file, a floorplan spec (.yaml), a launch file, a catkin package folder, or any
-    folder (a workspace, its src/, a folder of submissions): searched for packages, else for worlds and specs.
+    PATH is a .world/.sdf/model.sdf file, a floorplan spec (.yaml), a launch file (roslaunch XML or ROS 2
+    .launch.py, read without running it), a catkin or ament package folder, or any folder (a catkin or colcon
+    workspace, its src/, a folder of submissions): searched for packages, else for worlds and specs.
     A missing path is a failed result of its own. Progress goes to stderr (a bar on a terminal, a line per
     file otherwise). Exit status: 0 every check passed (warnings allowed), 1 a check failed, 2 bad input.
     """

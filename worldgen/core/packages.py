@@ -1,4 +1,4 @@
-"""ROS 1 packages on disk: their manifests, the folders rospack searches, and which package holds a file.
+"""ROS packages on disk: their manifests, the folders rospack searches, and which package holds a file.
 
 The one place that crawls for ``package.xml`` files, for launch files' ``$(find PKG)``
 (:mod:`worldgen.ros.launch_reader`), xacro's ``$(find PKG)`` and ``package://`` URIs
@@ -6,7 +6,8 @@ The one place that crawls for ``package.xml`` files, for launch files' ``$(find 
 (:mod:`worldgen.sdf.resolve`). Each caller chooses its roots and their order; crawling is done as catkin_pkg and
 rospkg do it: a root that is a package is that package; anything else is walked top-down (following symlinked
 folders, as a workspace's ``src/`` often holds them), not descending into a package nor into a folder holding
-``CATKIN_IGNORE``, skipping hidden folders, in sorted order so that the first match is the same on every machine.
+``CATKIN_IGNORE`` (or colcon's ``COLCON_IGNORE``, ament's ``AMENT_IGNORE``), skipping hidden folders, in sorted
+order so that the first match is the same on every machine. ROS 2 (ament) packages are found the same way.
 Manifests are parsed with lxml without entities, DTDs or network access.
 """
 
@@ -18,6 +19,7 @@ from typing import Iterable, Mapping
 
 MANIFEST = "package.xml"
 IGNORE_MARKER = "CATKIN_IGNORE"
+IGNORE_MARKERS = (IGNORE_MARKER, "COLCON_IGNORE", "AMENT_IGNORE")   # a folder holding one is not searched
 
 
 def _manifest_root(manifest: Path):
@@ -32,6 +34,14 @@ def manifest_name(manifest: str | Path) -> str | None:
     root = _manifest_root(Path(manifest))
     name = root.findtext("name") if root is not None else None
     return name.strip() if name else None
+
+
+def build_type(package_dir: str | Path) -> str:
+    """The package's ``<export><build_type>`` (``ament_python``, ``ament_cmake``, ``cmake`` …), ``catkin`` when it
+    declares none, as colcon and catkin_pkg take it."""
+    root = _manifest_root(Path(package_dir) / MANIFEST)
+    text = root.findtext("export/build_type") if root is not None else None
+    return (text or "").strip() or "catkin"
 
 
 def gazebo_model_paths(package_dir: str | Path) -> list[Path]:
@@ -57,19 +67,20 @@ def ros_package_path(environ: Mapping[str, str] | None = None) -> list[Path]:
     return [Path(p) for p in environ.get("ROS_PACKAGE_PATH", "").split(os.pathsep) if p.strip()]
 
 
-WORKSPACE_SPACES = ("build", "devel", "install", "log", "logs")   # a catkin workspace's generated folders
+WORKSPACE_SPACES = ("build", "devel", "install", "log", "logs")   # a catkin or colcon workspace's generated folders
 
 
 def is_workspace(folder: Path) -> bool:
-    """Whether ``folder`` is a catkin workspace: a ``src/`` beside ``.catkin_workspace`` or a generated space."""
+    """Whether ``folder`` is a catkin or colcon workspace: a ``src/`` beside ``.catkin_workspace`` or a generated
+    space (colcon's ``build/``, ``install/``, ``log/``)."""
     return (folder / "src").is_dir() and ((folder / ".catkin_workspace").exists() or
                                           any((folder / d).is_dir() for d in WORKSPACE_SPACES))
 
 
 def crawl(root: str | Path, *, workspaces: bool = False, limit: int | None = None) -> list[Path]:
     """The package folders under ``root`` in crawl order (see the module docstring); ``[root]`` when ``root``
-    is a package itself, ``[]`` when it is no folder. With ``workspaces``, a catkin workspace is entered only
-    through its ``src/`` (its build, devel and install spaces hold copies of the manifests); past ``limit``
+    is a package itself, ``[]`` when it is no folder. With ``workspaces``, a catkin or colcon workspace is entered
+    only through its ``src/`` (its build, devel and install spaces hold copies of the manifests); past ``limit``
     packages the walk stops (a folder as big as a disk)."""
     root = Path(root)
     if (root / MANIFEST).is_file():
@@ -78,7 +89,7 @@ def crawl(root: str | Path, *, workspaces: bool = False, limit: int | None = Non
     seen: set[str] = set()   # real paths walked: a symlink back up the tree is walked once
     for dirpath, dirnames, filenames in os.walk(root, followlinks=True):
         real = os.path.realpath(dirpath)
-        if real in seen or IGNORE_MARKER in filenames:
+        if real in seen or any(marker in filenames for marker in IGNORE_MARKERS):
             dirnames.clear()
             continue
         seen.add(real)

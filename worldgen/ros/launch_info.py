@@ -38,7 +38,9 @@ class LaunchInfo:
     package named by its ``$(find PKG)``. ``robots`` lists every spawn_model node (in file order, includes
     followed); ``model`` and ``spawn`` are the first robot's (for one-robot files: *the* robot), falling back to
     the ``model`` and ``x_pos``/``y_pos``/``z_pos``/``yaw`` args when no spawn node could be read.
-    ``model_env`` names the environment variable the model depends on when it was not set. ``args`` are the
+    ``model_env`` names the environment variable the model depends on when it was not set. ``simulator`` is the
+    simulator a ROS 2 launch file starts (``gazebo`` for Gazebo Classic, ``gz-sim``; ``unknown`` when an include
+    that cannot be read may start one; None when none is seen, and for roslaunch XML files). ``args`` are the
     top-level args' values (None when unresolved). ``params`` are the parameters roslaunch would set on the
     master (full name → value, typed, in the order set; nodes' private ones under their names), as far as they
     resolve. ``findings`` say what could not be resolved and why.
@@ -51,6 +53,7 @@ class LaunchInfo:
     model: str | None = None
     model_env: str | None = None
     spawn: Pose | None = None
+    simulator: str | None = None
     args: dict[str, str | None] = field(default_factory=dict)
     robots: list[RobotSpawn] = field(default_factory=list)
     nodes: list[NodeRef] = field(default_factory=list)

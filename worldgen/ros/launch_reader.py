@@ -1,4 +1,7 @@
-"""Reading roslaunch XML files back: the world, the robot model and every spawn pose they start.
+"""Reading launch files back: the world, the robot model and every spawn pose they start.
+
+A ROS 2 Python launch file (``*.launch.py``, ``*_launch.py``) is read by :mod:`.launch_py_reader` (statically,
+never run) into the same :class:`~.launch_info.LaunchInfo`; everything below is about roslaunch XML files.
 
 :func:`read_launch` evaluates a launch file the way roslaunch does for what matters here — args and their
 defaults, ``$(arg)``/``$(env)``/``$(optenv)``/``$(find)``/``$(dirname)``/``$(anon)``, groups and namespaces,
@@ -38,7 +41,8 @@ def package_index(launch_path: str | Path, ros_package_path: Sequence[str | Path
 def read_launch(path: str | Path, args: Mapping[str, str] | None = None, *,
                 ros_package_path: Sequence[str | Path] | None = None,
                 environ: Mapping[str, str] | None = None) -> LaunchInfo:
-    """Read a roslaunch XML file: world, robot model, spawn poses, args, nodes (see :class:`LaunchInfo`).
+    """Read a roslaunch XML file: world, robot model, spawn poses, args, nodes (see :class:`LaunchInfo`); a ROS 2
+    Python launch file is read by :func:`.launch_py_reader.read_launch_py`.
 
     ``args`` are command-line overrides (``x_pos:=1.5`` → ``{"x_pos": "1.5"}``); ``ros_package_path`` and
     ``environ`` default to the process's. Raises WorldFileError (with the line) for a file roslaunch could not
@@ -49,6 +53,10 @@ def read_launch(path: str | Path, args: Mapping[str, str] | None = None, *,
     """
     path = Path(path)
     environ = os.environ if environ is None else environ
+    if is_python_launch(path):
+        from .launch_py_reader import read_launch_py
+
+        return read_launch_py(path, args, finder=package_index(path, ros_package_path), environ=environ)
     read = LaunchRead(Lookup(package_index(path, ros_package_path), environ), LaunchInfo(path=path))
     load_launch(read, path, {k: str(v) for k, v in (args or {}).items()}, "/", None)
     info = read.info
@@ -68,3 +76,36 @@ def read_launch(path: str | Path, args: Mapping[str, str] | None = None, *,
                       None, "give the spawn args numeric defaults")
     return info
 
+
+
+PYTHON_LAUNCH_SUFFIXES = (".launch.py", "_launch.py")
+
+
+def is_python_launch(path: str | Path) -> bool:
+    """Whether ``path`` names a ROS 2 Python launch file (``NAME.launch.py`` or ``NAME_launch.py``)."""
+    return Path(path).name.lower().endswith(PYTHON_LAUNCH_SUFFIXES)
+
+
+NODES_ONLY = "starts no Gazebo world and spawns no robot (nodes only): nothing to simulate"
+
+
+def nothing_to_simulate(path: str | Path, info: LaunchInfo) -> str | None:
+    """Why a launch file has nothing to simulate on its own, or None when it has a world to check: it names no
+    world and spawns no robot (a package's launch file running nodes beside a world started elsewhere), or — a
+    Python launch file, whose read says whether it starts a simulator — it spawns a robot into a simulator it
+    does not start (a part other launch files include). An XML file is taken to start one when it mentions
+    gazebo anywhere."""
+    if info.world_ref is not None:
+        return None
+    if is_python_launch(path):
+        if info.simulator is not None:
+            return None
+        return NODES_ONLY if not info.robots else ("spawns a robot but starts no simulator or world (a part that "
+                                                   "other launch files include): nothing to simulate on its own")
+    if info.robots or info.spawn is not None:
+        return None
+    try:
+        text = Path(path).read_text(encoding="utf-8", errors="replace")
+    except OSError:
+        return None
+    return None if "gazebo" in text else NODES_ONLY

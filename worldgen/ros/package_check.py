@@ -1,8 +1,10 @@
-"""What would break in a catkin package: its manifest, CMakeLists.txt, scripts and launch files.
+"""What would break in a catkin or ament package: its manifest, build files, scripts and launch files.
 
-:func:`check_package` reads every launch file of the package with :func:`worldgen.ros.launch_reader.read_launch`
-and turns what it cannot resolve into findings, beside the checks of package.xml (with catkin_pkg when it is
-installed), CMakeLists.txt and the scripts' executable bits.
+:func:`check_package` reads every launch file of the package (roslaunch XML and ROS 2 Python launch files) with
+:func:`worldgen.ros.launch_reader.read_launch` and turns what it cannot resolve into findings, beside the checks of
+package.xml (with catkin_pkg when it is installed), the scripts' executable bits, and the build files: a catkin
+package's CMakeLists.txt here, an ament package's (setup.py, setup.cfg, resource marker, or CMakeLists.txt with
+ament_package()) in :mod:`.ament_check`.
 """
 
 from __future__ import annotations
@@ -14,14 +16,15 @@ from typing import Mapping, Sequence
 
 from ..core.errors import WorldFileError
 from ..core.findings import Finding
-from .launch_reader import read_launch
-from ..core.packages import manifest_name
+from .ament_check import check_ament
+from .launch_reader import PYTHON_LAUNCH_SUFFIXES, read_launch
+from ..core.packages import build_type, manifest_name
 from ..spec.model import ROBOT_MODELS
 
 
 def package_launch_files(pkg_dir: str | Path) -> list[Path]:
-    """Every launch file of a package (``*.launch``, ``*.launch.xml``), sorted; hidden folders and nested
-    packages are skipped."""
+    """Every launch file of a package (``*.launch``, ``*.launch.xml``, ROS 2's ``*.launch.py`` and
+    ``*_launch.py``), sorted; hidden folders and nested packages are skipped."""
     pkg_dir = Path(pkg_dir)
     found: list[Path] = []
     for dirpath, dirnames, filenames in os.walk(pkg_dir):
@@ -30,17 +33,18 @@ def package_launch_files(pkg_dir: str | Path) -> list[Path]:
             dirnames.clear()
             continue
         dirnames[:] = sorted(d for d in dirnames if not d.startswith("."))
-        found += [here / f for f in filenames if f.endswith((".launch", ".launch.xml"))]
+        found += [here / f for f in filenames if f.endswith((".launch", ".launch.xml") + PYTHON_LAUNCH_SUFFIXES)]
     return sorted(found)
 
 
 def check_package(pkg_dir: str | Path, *, ros_package_path: Sequence[str | Path] | None = None,
                   environ: Mapping[str, str] | None = None) -> list[Finding]:
-    """What would break in the catkin package at ``pkg_dir``: package.xml that catkin_pkg cannot parse (or a
-    name catkin rejects), a CMakeLists.txt without ``project(NAME)``/``catkin_package()`` or not installing its
-    launch/worlds/models folders, scripts without their executable bit, launch files that do not parse, name a
-    world file that does not exist or an unknown robot model, and missing exec_depends on the packages the
-    launch files use."""
+    """What would break in the catkin or ament package at ``pkg_dir``: package.xml that catkin_pkg cannot parse
+    (or a name catkin rejects), a catkin CMakeLists.txt without ``project(NAME)``/``catkin_package()`` or not
+    installing its launch/worlds/models folders (an ament package's build files: :mod:`.ament_check`), scripts
+    without their executable bit, launch files that do not parse, name a world file that does not exist, an
+    unknown robot model or a node the package does not have, and missing exec_depends on the packages the launch
+    files use."""
     pkg_dir = Path(pkg_dir)
     findings: list[Finding] = []
 
@@ -49,15 +53,22 @@ def check_package(pkg_dir: str | Path, *, ros_package_path: Sequence[str | Path]
 
     manifest = pkg_dir / "package.xml"
     if not manifest.is_file():
-        add("package-xml", "error", "no package.xml: this folder is not a catkin package", pkg_dir,
-            "create it with 'worldgen scaffold NAME' or catkin_create_pkg")
+        add("package-xml", "error", "no package.xml: this folder is not a ROS package", pkg_dir,
+            "create it with 'worldgen scaffold NAME' or catkin_create_pkg (ROS 2: ros2 pkg create)")
         return findings
     name, depends = _read_manifest(manifest, add)
-    cmake = pkg_dir / "CMakeLists.txt"
-    if not cmake.is_file():
+    kind = build_type(pkg_dir)
+    executables: set[str] | None = None
+    if kind == "catkin" and re.search(r"<buildtool_depend>\s*ament_", _text(manifest)):
+        add("package-xml", "warning", "package.xml depends on ament but declares no <build_type>: colcon builds "
+            "it as a catkin package", manifest, "add <export><build_type>ament_cmake</build_type></export> (or "
+            "ament_python)")
+    if kind != "catkin":
+        executables = check_ament(pkg_dir, name, kind, add)
+    elif not (pkg_dir / "CMakeLists.txt").is_file():
         add("cmake", "error", "no CMakeLists.txt", pkg_dir, "every catkin package needs one (see catkin_create_pkg)")
     else:
-        _check_cmake(cmake, name, pkg_dir, add)
+        _check_cmake(pkg_dir / "CMakeLists.txt", name, pkg_dir, add)
     scripts = pkg_dir / "scripts"
     if scripts.is_dir():
         for script in sorted(p for p in scripts.rglob("*") if p.is_file() and not p.name.startswith(".")):
@@ -69,7 +80,7 @@ def check_package(pkg_dir: str | Path, *, ros_package_path: Sequence[str | Path]
                     "start it with #!/usr/bin/env python3")
     used: set[str] = set()
     for launch in package_launch_files(pkg_dir):
-        _check_launch(launch, name, pkg_dir, used, add, ros_package_path, environ)
+        _check_launch(launch, name, pkg_dir, used, add, ros_package_path, environ, kind, executables)
     if depends is not None:
         for dep in sorted(used - depends - {name}):
             add("package-depends", "warning", f"launch files use the package {dep} but package.xml does not "
@@ -118,7 +129,8 @@ def _check_cmake(cmake: Path, name: str, pkg_dir: Path, add) -> None:
                 cmake, f"add install(DIRECTORY {folder} DESTINATION ${{CATKIN_PACKAGE_SHARE_DESTINATION}})")
 
 
-def _check_launch(launch: Path, name: str, pkg_dir: Path, used: set[str], add, ros_package_path, environ) -> None:
+def _check_launch(launch: Path, name: str, pkg_dir: Path, used: set[str], add, ros_package_path, environ,
+                  kind: str = "catkin", executables: set[str] | None = None) -> None:
     try:
         info = read_launch(launch, ros_package_path=ros_package_path, environ=environ or {})
     except WorldFileError as err:
@@ -129,9 +141,10 @@ def _check_launch(launch: Path, name: str, pkg_dir: Path, used: set[str], add, r
             add(finding.check, finding.severity, finding.message, finding.where, finding.fix)
     if info.world_path is not None and not info.world_path.is_file():
         add("launch-world", "error", f"the world file {info.world_path} does not exist", launch,
-            "build it (worldgen build SPEC --package DIR) or fix world_name")
+            "build it (worldgen build SPEC --package DIR) or fix the world's path")
     elif info.world_path is None and info.package == name and info.world_ref:
-        add("launch-world", "error", f"world_name {info.world_ref} cannot be resolved", launch, "fix world_name")
+        add("launch-world", "error", f"the world {info.world_ref} cannot be resolved", launch,
+            "fix the world's path")
     known = set(ROBOT_MODELS)
     models = {r.robot for r in info.robots if r.robot} | ({info.model} if info.model else set())
     for model in sorted(models - known):
@@ -139,7 +152,12 @@ def _check_launch(launch: Path, name: str, pkg_dir: Path, used: set[str], add, r
             f"use one of {', '.join(sorted(known))}")
     for node in info.nodes:
         used.add(node.package)
-        if node.package == name:
+        if node.package == name and kind != "catkin":
+            if executables is not None and node.type not in executables:
+                add("launch-node", "error", f"node {node.full_name}: {node.package} installs no executable "
+                    f"{node.type!r}", f"{launch}:{node.line}", "add it to setup.py's console_scripts (ament_python) "
+                    "or install it in CMakeLists.txt (ament_cmake), or fix executable=")
+        elif node.package == name:
             exe = next((p for p in pkg_dir.rglob(node.type) if p.is_file()), None)
             if exe is None:
                 add("launch-node", "error", f"node {node.full_name}: {node.package}/{node.type} is not in the package",
@@ -149,6 +167,8 @@ def _check_launch(launch: Path, name: str, pkg_dir: Path, used: set[str], add, r
                     f"{launch}:{node.line}", f"chmod +x {exe}")
     text = _text(launch)
     used.update(re.findall(r"\$\(find\s+([^)\s]+)\)", text))
+    used.update(re.findall(r"\b(?:get_package_share_directory|FindPackageShare)\(\s*(?:package\s*=\s*)?"
+                           r"['\"]([A-Za-z0-9_]+)['\"]", text))
 
 
 def _head(path: Path) -> bytes:

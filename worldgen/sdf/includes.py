@@ -1,5 +1,7 @@
 """``<include>``: its URI resolved through the model path, the included model file parsed and read (as a model
-of the including scope), Gazebo's stock ground plane stood in for, include cycles cut.
+of the including scope), Gazebo's stock ground plane stood in for, include cycles cut. An online (Gazebo Fuel)
+model, as Gazebo Sim worlds include them, is never downloaded: a warning names it (Fuel's stock "Ground Plane" and
+"Sun", which ROBOTIS's Gazebo Sim worlds include, are stood in for as the stock ``ground_plane`` and ``sun`` are).
 
 The included ``<model>`` is read by the function the caller passes (:func:`worldgen.sdf.models.read_model`), so
 that reading a model and including one do not import each other.
@@ -15,7 +17,7 @@ from ..core.errors import WorldFileError
 from ..core.inputs import read_capped
 from .context import ReadContext, SdfFile, describe_file, parse_sdf
 from .frames import Frames
-from .resolve import STOCK_MODELS, Resolved, model_sdf_file, uri_fix
+from .resolve import STOCK_MODELS, Resolved, fuel_model, model_sdf_file, uri_fix
 from .tree import Model, ground_plane
 from .values import children, read_bool, read_pose
 
@@ -45,15 +47,23 @@ def read_include(ctx: ReadContext, el, f: SdfFile, parent_static: bool, frames: 
     resolved = ctx.resolver.resolve(uri, f.dir, want_dir=True)
     stock = resolved.model_name if resolved.model_name in STOCK_MODELS else None
     if resolved.path is None:
+        fuel = fuel_model(uri) if resolved.remote else None
+        named = f"the Fuel model '{fuel[1]}' ({fuel[0]})" if fuel else None
         if stock == "ground_plane":
-            ctx.note("include", "info", f"{uri}: Gazebo's stock ground plane, stood in for by a plane at "
-                     "z = 0", where)
+            ctx.note("include", "info", f"{named}: Gazebo's stock ground plane, never downloaded; stood in for by a "
+                     "plane at z = 0" if named else f"{uri}: Gazebo's stock ground plane, stood in for by a plane "
+                     "at z = 0", where)
             return (ground_plane(name_override or "ground_plane", where), *read_pose(ctx, el, f))
         if stock == "sun":
+            if named:
+                ctx.note("include", "info", f"{named}: Gazebo's stock sun, a light with nothing to collide with "
+                         "(never downloaded)", where)
             return None
         if resolved.remote:
-            ctx.note("include", "warning", f"{uri} is an online (Fuel) model; it is never downloaded, so its "
-                     "geometry is missing", where,
+            ctx.note("include", "warning", f"{named or uri} is an online model, never downloaded here: its "
+                     "geometry is missing (not counted as walls)" + (f" ({uri})" if named else ""), where,
+                     "download it (gz fuel download -u URL), put its folder on --model-path DIR (or "
+                     "GZ_SIM_RESOURCE_PATH) and include it as model://NAME" if named else
                      "download it and put its folder on GAZEBO_MODEL_PATH, or pass --model-path DIR")
         else:
             ctx.note("include", "warning", f"cannot find included model {uri}: {resolved.reason}; its "

@@ -1,11 +1,12 @@
 """Where ``model://``, ``package://``, ``file://`` and plain paths in a world point to, the way Gazebo looks them up.
 
 Search order for ``model://NAME/...``: the explicit model paths (``--model-path``), then ``GAZEBO_MODEL_PATH``,
-then ``SDF_PATH`` (both colon-separated lists of folders holding ``NAME/model.config``), then the
+then ``SDF_PATH``, then Gazebo Sim's ``GZ_SIM_RESOURCE_PATH`` and ``IGN_GAZEBO_RESOURCE_PATH`` (all
+colon-separated lists of folders holding ``NAME/model.config``), then the
 ``<gazebo_ros gazebo_model_path="${prefix}/models"/>`` exports of catkin packages on ``ROS_PACKAGE_PATH`` and of
 the catkin package that holds the world file itself, and finally a catkin package called NAME
 (``model://pkg/meshes/x.dae``).
-Nothing is ever fetched from the network.
+Nothing is ever fetched from the network: an online (Fuel) URI is named for what it is (:func:`fuel_model`).
 """
 
 from __future__ import annotations
@@ -21,6 +22,8 @@ from ..core import packages as rospkg
 from ..core.safexml import parser
 
 STOCK_MODELS = ("ground_plane", "sun")  # Gazebo's own models, stood in for when no model path has them
+MODEL_PATH_VARIABLES = ("GAZEBO_MODEL_PATH", "SDF_PATH", "GZ_SIM_RESOURCE_PATH", "IGN_GAZEBO_RESOURCE_PATH")
+FUEL_HOSTS = ("fuel.gazebosim.org", "fuel.ignitionrobotics.org")
 
 
 @dataclass(frozen=True)
@@ -43,6 +46,17 @@ class Resolved:
             parts = unquote(text).split("/")
             name = parts[parts.index("models") + 1] if self.remote and "models" in parts[:-1] else parts[-1]
         return name.strip().lower().replace(" ", "_")
+
+
+def fuel_model(uri: str) -> tuple[str, str] | None:
+    """(owner, model name) of a Gazebo Fuel model URI (``https://fuel.gazebosim.org/1.0/OpenRobotics/models/Ground
+    Plane[/VERSION]``, spaces maybe written ``%20``), None for any other URI."""
+    parts = unquote(uri.strip()).split("/")
+    if len(parts) < 7 or parts[0] not in ("http:", "https:") or parts[2].lower() not in FUEL_HOSTS:
+        return None
+    if parts[5].lower() != "models" or not parts[6].strip():
+        return None
+    return parts[4], parts[6].strip()
 
 
 def _split_paths(value: str | None) -> list[Path]:
@@ -89,7 +103,8 @@ class Resolver:
     def __init__(self, model_paths=(), *, env=None, world_file: Path | None = None):
         env = os.environ if env is None else env
         self.search = [Path(p) for p in model_paths]
-        self.search += _split_paths(env.get("GAZEBO_MODEL_PATH")) + _split_paths(env.get("SDF_PATH"))
+        for variable in MODEL_PATH_VARIABLES:
+            self.search += [p for p in _split_paths(env.get(variable)) if p not in self.search]
         self._ros_roots = rospkg.ros_package_path(env)
         self._world_file = world_file
         self._packages: dict[str, Path] | None = None
