@@ -199,3 +199,16 @@ def test_empty_world_in_the_simulator(corpus):
     assert r["metrics"]["lidar_no_hit_beams"] == 360 and r["metrics"]["lidar_no_hit_reading"] == 0.0
     assert [f["severity"] for f in r["findings"] if f["check"] == "stop-at-wall"] == ["info"]
     assert r["metrics"]["settle_height_m"] == pytest.approx(0.0, abs=0.01)
+
+
+def test_robotis_jazzy_worlds_name_their_fuel_includes_without_fetching(at_origin):
+    """Gazebo Sim worlds include Fuel's "Ground Plane" and "Sun" by URL: each is named as the Fuel model it is,
+    stood in for (a plane at z = 0; a light, nothing to collide with), never downloaded, never a warning."""
+    results, _ = at_origin
+    jazzy = "ROBOTIS-GIT__turtlebot3_simulations@jazzy__turtlebot3_gazebo_worlds_"
+    for name, fuel in (("turtlebot3_world.world", {"Ground Plane", "Sun"}),
+                       ("turtlebot3_house.world", {"Ground Plane", "Sun"}),
+                       ("turtlebot3_dqn_stage4.world", {"Ground Plane"})):
+        notes = [f for f in results[jazzy + name]["findings"] if f["check"] == "include" and "Fuel" in f["message"]]
+        assert {f["message"].split("'")[1] for f in notes} == fuel, notes
+        assert {f["severity"] for f in notes} == {"info"}
