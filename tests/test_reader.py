@@ -449,7 +449,7 @@ def test_gravity_inside_physics_is_reported_for_sdf_1_5_and_later_only():
     assert old.findings == []
 
 
-@pytest.mark.parametrize("version", ["1.4", "1.5", "1.6", "1.7", "1.8", "1.9"])
+@pytest.mark.parametrize("version", ["1.4", "1.5", "1.6", "1.7", "1.8", "1.9", "1.10", "1.11"])
 def test_known_sdf_versions_read_quietly(version):
     scene = read_world_text(world(box_model("m"), version=version))
     assert scene.sdf_version == version and scene.findings == [] and len(scene.shapes) == 1

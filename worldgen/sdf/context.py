@@ -18,7 +18,7 @@ from ..core.safexml import parse_bytes
 from .meshes import MeshCache
 from .resolve import Resolver
 
-KNOWN_VERSIONS = ("1.4", "1.5", "1.6", "1.7", "1.8", "1.9")
+KNOWN_VERSIONS = ("1.4", "1.5", "1.6", "1.7", "1.8", "1.9", "1.10", "1.11")   # 1.10, 1.11: Gazebo Garden to Ionic
 
 
 @dataclass
@@ -76,7 +76,8 @@ def describe_file(ctx: ReadContext, root, path: Path) -> SdfFile:
     elif text is not None and text.strip() not in KNOWN_VERSIONS:
         ctx.note("sdf-version", "warning", f"SDF version '{text}' is not one the reader knows "
                  f"({KNOWN_VERSIONS[0]}–{KNOWN_VERSIONS[-1]}); read as the nearest known one",
-                 f"{path}:{root.sourceline}", "use version 1.6 for Gazebo 9/11 (ROS Melodic/Noetic)")
+                 f"{path}:{root.sourceline}", "use version 1.6 for Gazebo Classic 9/11 (ROS Melodic, Noetic, Humble), "
+                                              "1.8 to 1.11 for Gazebo Sim (ROS Jazzy)")
     try:
         major, minor = (int(p) for p in (text or "1.6").strip().split(".")[:2])
     except ValueError:
