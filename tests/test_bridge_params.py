@@ -151,3 +151,13 @@ def test_sim_sets_what_roslaunch_would_so_rosparam_get_sees_it(package, tmp_path
         out, err = proc.communicate(timeout=30)
     assert "set the launch file's" in err and "Traceback" not in err, err
     no_leftovers(env)
+
+
+def test_a_ros2_launch_file_as_a_node_is_one_line(package, tmp_path):
+    """worldgen run starts rospy nodes: a ROS 2 launch.py given as the nodes says so, before anything starts."""
+    launch = package / "launch" / "stop.launch.py"
+    launch.write_text("from launch import LaunchDescription\n\ndef generate_launch_description():\n"
+                      "    return LaunchDescription([])\n")
+    result = run([str(ROOM), str(launch)])
+    assert result.exit_code == 2 and "is a ROS 2 launch file: worldgen run starts ROS 1 (rospy) nodes" in \
+        result.output, result.output

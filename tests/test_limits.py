@@ -17,6 +17,7 @@ from conftest import REPO, CliRunner
 from worldgen.cli import main
 from worldgen.core import inputs
 from worldgen.geometry import enclosure, growth, slices
+from worldgen.ros import pyvalues
 from worldgen.sdf import includes
 from worldgen.spec import maps, model, nodes
 
@@ -57,7 +58,10 @@ def room(half=1.5):
     f"{nodes.MAX_VALUES:,}".replace(",", " "), f"{includes.MAX_INCLUDES:,}".replace(",", " "),
     f"{includes.MAX_INCLUDE_DEPTH} deep", f"{maps.MAX_MAP_PIXELS:,}".replace(",", " "),
     f"{maps.MAX_MAP_PIECES:,}".replace(",", " "), f"under {maps.SPECK_PIXELS} pixels",
-    f"{model.MAX_MARKINGS} lines and patches", f"{model.MAX_LINE_POINTS:,} points".replace(",", " ")])
+    f"{model.MAX_MARKINGS} lines and patches", f"{model.MAX_LINE_POINTS:,} points".replace(",", " "),
+    f"{pyvalues.MAX_PYTHON_BYTES // 2 ** 20} MiB; {pyvalues.MAX_WORK:,} reading steps".replace(",", " "),
+    f"nested {pyvalues.MAX_NESTING} deep", f"{pyvalues.MAX_CALL_DEPTH} nested and {pyvalues.MAX_CALLS:,} followed"
+    .replace(",", " ")])
 def test_readme_states_each_limit(number):
     section = README[README.index("## Limits"):README.index("## Design")]
     assert number in section

@@ -68,6 +68,9 @@ def resolve_nodes(items: Sequence[str], python: str, search: Sequence[str | Path
     specs: list[NodeSpec] = []
     for item, args in _group(items):
         path = Path(item)
+        if item.endswith((".launch.py", "_launch.py")):
+            raise InputError("is a ROS 2 launch file: worldgen run starts ROS 1 (rospy) nodes", path=path,
+                             hint="give the ROS 1 .launch file or the node's .py file (validate reads a launch.py)")
         if path.suffix in (".launch", ".xml") or item.endswith(".launch.xml"):
             specs += _launch_nodes(path, python, search, args)
         elif path.exists() or not _PKG_TYPE.match(item) or item.startswith("."):
