@@ -1,7 +1,8 @@
 """What a simulator needs to know about a robot, read from its URDF the way Gazebo would read it.
 
 The drive comes from the ``libgazebo_ros_diff_drive`` plugin block (wheel joints, separation, diameter, rim
-acceleration, torque, update rate), the LiDAR from the ``<sensor type="ray">`` block on its link, and surface
+acceleration, torque, update rate), the LiDAR from the ``<sensor type="ray">`` block on its link, the cameras
+from the ``<sensor type="camera"|"depth">`` blocks with a gazebo_ros camera plugin (:mod:`.cameras`), and surface
 friction from ``<gazebo reference="link"><mu1>``. So a model behaves in our simulator with the numbers Gazebo
 would use — including the real ``turtlebot3_description``, whose plugin says 0.287 m where its wheels are 0.288 m
 apart. A URDF without those blocks falls back to its geometry (joints named ``wheel_left_joint`` and
@@ -16,6 +17,7 @@ from dataclasses import dataclass, field
 
 from ..core.errors import InputError
 from ..core.numbers import floats
+from .cameras import CameraParams, read_cameras
 
 # TurtleBot3's diff-drive and LDS-01 numbers, used when a URDF has no plugin or sensor block.
 FALLBACK_DRIVE = {"acceleration": 1.0, "torque": 10.0, "update_rate": 30.0}
@@ -79,6 +81,7 @@ class RobotProfile:
     lidar: LidarParams | None
     friction: dict[str, float] = field(default_factory=dict)   # link → μ from its <gazebo> block
     base_frame: str = "base_footprint"
+    cameras: tuple[CameraParams, ...] = ()
 
 
 def origin_of(elem: ET.Element) -> tuple[tuple[float, ...], tuple[float, ...]]:
@@ -124,7 +127,8 @@ def robot_profile(urdf: str, source: str | None = None) -> RobotProfile:
     return RobotProfile(
         name=root.get("name", ""), root_link=roots[0], links=links, joints=joints,
         drive=_drive(root, joints, plugin, roots[0]), lidar=_lidar(gazebo, links), friction=friction,
-        base_frame=(plugin.findtext("robotBaseFrame") or roots[0]).strip() if plugin is not None else roots[0])
+        base_frame=(plugin.findtext("robotBaseFrame") or roots[0]).strip() if plugin is not None else roots[0],
+        cameras=read_cameras(gazebo))
 
 
 def _joint(elem: ET.Element) -> Joint:

@@ -1,6 +1,10 @@
 """The models of a running world as Gazebo lists them (``/gazebo/model_states``): the world file's top-level models
 and the ones spawned since, each with a pose that can be read and set, and that can be deleted.
 
+A model also keeps its visual shapes (what a camera draws, :mod:`.camera_scene`) with their poses in the model
+frame: a world model's from the scene's ``visuals``, a spawned one's from its SDF; ``None`` when the source had no
+visuals at all (the camera then draws the collision shapes).
+
 A world model's shapes start out in the session's shared static compounds (:func:`.scene_loader.load_scene`);
 the first time it is moved it gets bodies of its own. Each body of a model keeps its pose relative to the model
 frame, so moving the model is one reset per body. A spawned model that is not static moves under physics (one
@@ -30,6 +34,11 @@ def pose_of(t: np.ndarray) -> Pose7:
     return (float(t[0, 3]), float(t[1, 3]), float(t[2, 3]), *poses.matrix_quat(t[:3, :3]))
 
 
+def belongs(shape: Shape, model: str) -> bool:
+    """Whether a shape is part of model ``model`` (or of a model nested in it)."""
+    return shape.model == model or shape.model.startswith(model + "::")
+
+
 def _shape_matrix(shape: Shape) -> np.ndarray:
     return poses.transform(shape.position, poses.quat_matrix(*shape.orientation))
 
@@ -46,6 +55,15 @@ class Model:
     bodies: List[Tuple[int, np.ndarray]] = field(default_factory=list)     # body, base pose in the model frame
     spawned: bool = False
     own: bool = False                                   # has bodies of its own (else shares the scene's)
+    visuals: Optional[List[Tuple[Shape, np.ndarray]]] = None   # visual, pose in the model frame (None: unknown)
+
+    def world_frame(self, client: int) -> np.ndarray:
+        """Where the model is now: its frame, or, moving under physics, its body's pose back to the model frame."""
+        if self.static or not self.own or not self.bodies:
+            return self.frame
+        body, base = self.bodies[0]
+        position, orientation = pb.getBasePositionAndOrientation(body, physicsClientId=client)
+        return matrix_of((*position, *orientation)) @ poses.inverse(base)
 
 
 class WorldModels:
@@ -57,9 +75,11 @@ class WorldModels:
         for name in scene.models:
             frame = matrix_of(scene.model_poses[name]) if name in scene.model_poses else np.eye(4)
             inverse = poses.inverse(frame)
-            mine = [s for s in scene.shapes if s.model == name or s.model.startswith(name + "::")]
+            mine = [s for s in scene.shapes if belongs(s, name)]
+            visuals = [(v, inverse @ _shape_matrix(v)) for v in scene.visuals if belongs(v, name)]
             self.models[name] = Model(name, all(s.static for s in mine), frame, frame.copy(),
-                                      [(s, inverse @ _shape_matrix(s)) for s in mine])
+                                      [(s, inverse @ _shape_matrix(s)) for s in mine],
+                                      visuals=visuals if scene.visuals else None)
         planes = [s for s in scene.shapes if s.kind == "plane"]
         if planes and not any(planes[0] in [s for s, _ in m.shapes] for m in self.models.values()):
             self.models.setdefault("ground_plane", Model("ground_plane", True, np.eye(4), np.eye(4)))
@@ -73,11 +93,7 @@ class WorldModels:
     # -- reading ---------------------------------------------------------------------------------------------
 
     def pose(self, name: str) -> Pose7:
-        model = self.models[name]
-        if not model.static and model.own:
-            position, orientation = pb.getBasePositionAndOrientation(model.bodies[0][0], physicsClientId=self.client)
-            return (*position, *orientation)
-        return pose_of(model.frame)
+        return pose_of(self.models[name].world_frame(self.client))
 
     def twist(self, name: str) -> Tuple[Tuple[float, float, float], Tuple[float, float, float]]:
         model = self.models[name]
@@ -88,10 +104,13 @@ class WorldModels:
 
     # -- changing --------------------------------------------------------------------------------------------
 
-    def spawn(self, name: str, shapes: List[Shape], frame: np.ndarray, static: bool, mass: float = 1.0) -> Model:
-        """A new model ``name`` whose ``shapes`` are given in its own frame, placed at ``frame`` (world)."""
+    def spawn(self, name: str, shapes: List[Shape], frame: np.ndarray, static: bool, mass: float = 1.0,
+              visuals: Optional[List[Shape]] = None) -> Model:
+        """A new model ``name`` whose ``shapes`` (and ``visuals``: None when its source had none) are given in its
+        own frame, placed at ``frame`` (world)."""
         model = Model(name, static, frame.copy(), frame.copy(), [(s, _shape_matrix(s)) for s in shapes],
-                      spawned=True, own=True)
+                      spawned=True, own=True,
+                      visuals=None if visuals is None else [(v, _shape_matrix(v)) for v in visuals])
         for shape, local in model.shapes:
             world = frame @ local
             shape.position = tuple(float(v) for v in world[:3, 3])

@@ -91,6 +91,7 @@ class Robot:
         self.client, self.slot, self.name = client, slot, name
         self.touches = TouchLog()
         source = robot_file(robot)
+        self.source = source if urdf is None else None   # where relative mesh paths start
         self.urdf = urdf if urdf is not None else robot_urdf(robot, mappings)
         self.profile: RobotProfile = robot_profile(self.urdf, source=str(source))
         if self.profile.drive is None:

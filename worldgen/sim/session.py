@@ -1,7 +1,8 @@
 """A headless pybullet session that behaves like Gazebo with TurtleBot3s in it: the world's shapes as static
 bodies, one or more robots (:mod:`.robot`: our description on the floor at its spawn pose, the diff-drive
 plugin's wheel commands, ground-truth odometry, the LDS-01 LiDAR, contacts), and models spawned, moved and
-deleted while it runs (:mod:`.models`, what Gazebo's spawn/set/delete services do). The first robot is *the*
+deleted while it runs (:mod:`.models`, what Gazebo's spawn/set/delete services do), and what the robots' cameras
+see (:mod:`.camera_scene`, drawn when first asked for). The first robot is *the*
 robot: the session's robot attributes and methods (``odometry``, ``scan``, ``cmd_vel`` …) are its.
 
 Always a DIRECT client of its own (every call passes ``physicsClientId``), closed by :meth:`Session.close` or
@@ -51,6 +52,9 @@ class Session:
             pb.setPhysicsEngineParameter(fixedTimeStep=time_step, numSolverIterations=solver_iterations,
                                          numSubSteps=0, physicsClientId=self.client)
             scene = scene or Scene(source=None)
+            self.scene = scene
+            self.movers: dict[int, Shape] = {}
+            self._camera_scene = None
             self.bodies: SceneBodies = load_scene(self.client, scene, add_ground=add_ground)
             self.models = WorldModels(self.client, self.bodies, scene)
             self.add_robot(robot, spawn, name=name, mappings=mappings, urdf=urdf)
@@ -113,6 +117,7 @@ class Session:
         pb.setCollisionFilterGroupMask(body, -1, SCENE_GROUP, SCENE_MASK, physicsClientId=self.client)
         self.bodies.shapes[body] = [Shape("cylinder", (position[0], position[1], height / 2), radius=radius,
                                           length=height, model=label)]
+        self.movers[body] = self.bodies.shapes[body][0]
         return body
 
     def move_body(self, body: int, x: float, y: float) -> None:
@@ -207,9 +212,28 @@ class Session:
     def contacts_of(self, robot: Robot, touch_distance: float = TOUCH_DISTANCE) -> list[Contact]:
         return robot.contacts(self.label, self.bodies.planes, touch_distance)
 
+    # -- cameras ---------------------------------------------------------------------------------------------
+
+    def open_cameras(self):
+        """The drawing state of the robots' cameras (:mod:`.camera_scene`), its OpenGL context made now:
+        InputError naming the packages to install when it cannot be."""
+        if self._camera_scene is None:
+            from .camera_scene import CameraScene
+
+            self._camera_scene = CameraScene(self)
+        self._camera_scene.open()
+        return self._camera_scene
+
+    def camera_image(self, robot: Robot, camera) -> np.ndarray:
+        """What ``camera`` (one of ``robot.profile.cameras``) sees now: height × width × 3 uint8 RGB."""
+        return self.open_cameras().image(robot, camera)
+
     # -- teardown --------------------------------------------------------------------------------------------
 
     def close(self) -> None:
+        cameras, self._camera_scene = getattr(self, "_camera_scene", None), None
+        if cameras is not None:
+            cameras.close()
         client, self.client = getattr(self, "client", None), None
         if client is not None and pb.isConnected(physicsClientId=client):
             pb.disconnect(physicsClientId=client)

@@ -16,6 +16,10 @@ topic             type                         what, when (simulated time)
 ``/cmd_vel``      geometry_msgs/Twist (in)     into gazebo_ros_diff_drive's model (:mod:`worldgen.sim.drive`)
 ================  ===========================  =============================================================
 
+A robot with a camera (the Waffle Pi's Raspberry Pi camera, the Waffle's R200 colour image) also has
+``/camera/rgb/image_raw``, ``/camera/rgb/camera_info`` and ``/camera/rgb/image_raw/compressed`` at 30 Hz, drawn
+only while some node subscribes (:mod:`.camera_topics`).
+
 Every robot of the run (one, or several from a launch file's ``<group ns>``s) has these topics in its namespace
 with its frames prefixed (:mod:`.robot_topics`); ``/clock``, ``/tf`` and ``/tf_static`` are shared. Gazebo's own
 services and ``/gazebo/model_states`` are :mod:`.gazebo_api`'s; ``reset_world`` and ``reset_simulation`` put
@@ -26,9 +30,10 @@ node's ``rospy.Rate``), ``pause_physics`` stops simulated time until ``unpause_p
 100 Hz, ``rospy.Rate`` loops up to 30 Hz wake within 8 ms of when they should, and publishing every step would
 double the clock traffic every node receives for nothing. The physics step stays the session's 1/240 s.
 
-``rate`` paces simulated time at that many times real time; 0 runs as fast as it goes, and then, after each scan
-that some node listens to, waits (at most 50 ms of real time) for the ``/cmd_vel`` that answers it, so that a
-node reacting to scans reacts within the same scan period, as it does in Gazebo at real time.
+``rate`` paces simulated time at that many times real time (:mod:`.pacing`); 0 runs as fast as it goes, and
+then, after each scan that some node listens to, waits (at most 50 ms of real time) for the ``/cmd_vel`` that
+answers it, so that a node reacting to scans reacts within the same scan period, as it does in Gazebo at real
+time. Camera pictures are drawn in the step they are due, so their cost slows the pace as any other work does.
 
 Run as ``python -m worldgen.ros.bridge.node CONFIG.json`` (see :func:`main`); a trace of what the robot did is
 written to the config's ``trace`` file at the end, for :mod:`.metrics`.
@@ -43,11 +48,10 @@ import threading
 import time
 from pathlib import Path
 
+from .pacing import Backlog, Governor
 from .robot_topics import RobotTopics
 
 CLOCK_EVERY = 2          # physics steps per /clock and /imu message
-BACKLOG = int(os.environ.get("WG_BACKLOG", "4096"))  # bytes unread by the nodes: they are falling behind
-CHECK_EVERY = float(os.environ.get("WG_CHECK", "0.05"))  # s of real time between looks at the nodes' sockets
 ANSWER_WAIT = 0.05       # s of real time to wait for the cmd_vel answering a scan at rate max
 START_WAIT = 30.0        # s of real time to wait for the start signal
 PAUSED_CLOCK = 0.1       # s of real time between /clock messages while paused
@@ -85,6 +89,7 @@ class Bridge:
                 robot.name = entry["name"]
             self.robots.append(RobotTopics(rospy, self.msg, robot, entry.get("ns", "/"), self.tf_prefix(entry),
                                            self.bag if i == 0 else None, self.lock))
+            self.add_cameras(self.robots[-1])
         self.graded = self._graded(config.get("graded"))
         from .gazebo_api import GazeboApi
 
@@ -123,9 +128,30 @@ class Bridge:
         robot = self.session.add_robot("burger", spawn, name=name, urdf=urdf, z=z)
         topics = RobotTopics(self.rospy, self.msg, robot, ns, self.tf_prefix({"ns": ns}), None, self.lock)
         topics.now = self.session.t
+        self.add_cameras(topics, strict=False)
         self.robots.append(topics)
         self.publish_static()
         return topics
+
+    def add_cameras(self, topics: RobotTopics, *, strict: bool = True) -> None:
+        """The robot's cameras on ROS (:mod:`.camera_topics`), the OpenGL context made now: InputError naming what
+        to install when it cannot be (``strict``), else a warning and a robot whose cameras publish nothing."""
+        cameras = [c for c in topics.robot.profile.cameras if c.link in topics.robot.link_index]
+        if not cameras:
+            return
+        from ...core.errors import WorldgenError
+        from .camera_topics import CameraTopics
+
+        try:
+            self.session.open_cameras()
+        except WorldgenError as err:
+            if strict:
+                raise
+            print(f"worldgen sim: warning: {topics.robot.name}'s camera publishes nothing: {err}", file=sys.stderr,
+                  flush=True)
+            return
+        topics.cameras = [CameraTopics(self.rospy, topics.robot, c, topics.ns, topics.prefix, self.session.time_step)
+                          for c in cameras]
 
     def remove_robot(self, topics: RobotTopics) -> None:
         topics.close()
@@ -179,6 +205,15 @@ class Bridge:
             listened = listened or (heard and topics is self.graded)
         return listened
 
+    def publish_cameras(self, step: int) -> None:
+        """The pictures due at physics step ``step`` that some node looks at."""
+        stamp = None
+        for topics in self.robots:
+            for camera in topics.cameras:
+                if step % camera.every == 0:
+                    stamp = stamp or self.stamp()
+                    camera.publish(self.session, stamp)
+
     def person_xy(self, t: float) -> tuple[float, float]:
         import math
 
@@ -229,78 +264,29 @@ def run_loop(rospy, bridge: Bridge, rate: float, duration: float | None, pids=()
             "interrupted": interrupted}
 
 
-def unread_bytes(pids: list[int]) -> int:
-    """Bytes waiting unread in the TCP sockets of processes ``pids`` (Linux: their socket inodes in /proc/PID/fd,
-    matched with the rx_queue column of /proc/net/tcp{,6}); 0 where /proc cannot tell."""
-    inodes = set()
-    for pid in pids:
-        try:
-            for fd in os.listdir(f"/proc/{pid}/fd"):
-                try:
-                    target = os.readlink(f"/proc/{pid}/fd/{fd}")
-                except OSError:
-                    continue
-                if target.startswith("socket:["):
-                    inodes.add(target[8:-1])
-        except OSError:
-            continue
-    total = 0
-    for table in ("/proc/net/tcp", "/proc/net/tcp6"):
-        try:
-            lines = Path(table).read_text().splitlines()[1:]
-        except OSError:
-            continue
-        for line in lines:
-            fields = line.split()
-            if len(fields) > 9 and fields[9] in inodes:
-                total += int(fields[4].split(":")[1], 16)
-    return total
-
-
-class Governor:
-    """Paces simulated time: at ``rate`` × real time, or, at rate 0 (max), as fast as the watched processes (the
-    nodes under test) keep up: when more than :data:`BACKLOG` bytes of messages wait unread in their sockets, they
-    are falling behind, and the pace drops below what was achieved; when nothing waits, it rises again, up to no
-    limit. (A node that lags reacts late in simulated time, which Gazebo at real time never shows.)"""
-
-    def __init__(self, rate: float, pids: list[int], sim_t: float = 0.0):
-        self.rate, self.pids = rate, list(pids)
-        self.anchor_wall, self.anchor_sim = time.monotonic(), sim_t
-        self.limit = rate if rate > 0 else None   # None: no limit
-        self.last_check = self.anchor_wall
-        self.previous = 0
-
-    def pace(self, sim_t: float) -> None:
-        now = time.monotonic()
-        if self.rate <= 0 and self.pids and now - self.last_check >= CHECK_EVERY:
-            now_waiting = unread_bytes(self.pids)
-            waiting, self.previous = min(now_waiting, self.previous), now_waiting   # what persists, not a message in flight
-            achieved = (sim_t - self.anchor_sim) / max(now - self.anchor_wall, 1e-6)
-            if waiting > BACKLOG:
-                self.limit = max(1.0, min(achieved, self.limit or achieved) * 0.7)
-            elif waiting == 0 and self.limit is not None:
-                self.limit = self.limit * 1.5 if self.limit < 200 else None
-            self.anchor_wall, self.anchor_sim, self.last_check = now, sim_t, now
-        if self.limit is not None:
-            ahead = self.anchor_wall + (sim_t - self.anchor_sim) / self.limit - now
-            if ahead > 0.0005:
-                time.sleep(ahead)
-
-
 def _steps(rospy, bridge: Bridge, rate: float, end_step: int | None, pids: list[int]) -> None:
+    backlog = Backlog(pids) if rate <= 0 and pids else None
+    try:
+        _step_loop(rospy, bridge, rate, end_step, backlog)
+    finally:
+        if backlog is not None:
+            backlog.stop()
+
+
+def _step_loop(rospy, bridge: Bridge, rate: float, end_step: int | None, backlog: Backlog | None) -> None:
     s = bridge.session
     dt = s.time_step
     drive_every = s._update_every
     scan_every = max(1, round(1.0 / (s.lidar.update_rate * dt))) if s.lidar is not None else 0
     person = bridge.person
-    governor = Governor(rate, pids)
+    governor = Governor(rate, backlog)
     step = 0
     while not rospy.is_shutdown() and (end_step is None or step < end_step):
         bridge.api.drain()
         if bridge.paused:
             bridge.publish_clock()   # the clock stands still
             time.sleep(PAUSED_CLOCK)
-            governor = Governor(rate, pids, s.t)   # paced afresh from where it stopped
+            governor = Governor(rate, backlog, s.t)   # paced afresh from where it stopped
             continue
         if person is not None:
             s.move_body(person[0], *bridge.person_xy(s.t + dt))
@@ -311,6 +297,7 @@ def _steps(rospy, bridge: Bridge, rate: float, end_step: int | None, pids: list[
             governor.pace(s.t)
         if step % drive_every == 0:
             bridge.publish_drive()
+        bridge.publish_cameras(step)
         if scan_every and step % scan_every == 0:
             listened = bridge.publish_scans()
             if rate <= 0 and listened and bridge.graded.cmd_sub.get_num_connections():
@@ -334,6 +321,7 @@ def main(argv: list[str]) -> int:
     from ...core.scene import Scene
     from .rosenv import import_rospy
 
+    keep_freed_memory()
     config = json.loads(Path(argv[0]).read_text(encoding="utf-8"))
     if config.get("gazebo_msgs"):
         sys.path.insert(0, config["gazebo_msgs"])
@@ -346,6 +334,8 @@ def main(argv: list[str]) -> int:
                           tuple(first.get("spawn") or config["spawn"]), no_hit=config.get("no_hit", "inf"),
                           seed=config.get("seed", 0),
                           mappings=first.get("mappings"), name=first.get("name") or model_name(config.get("robot")))
+        if _has_camera(session, config):
+            session.open_cameras()   # no OpenGL: one line naming the packages, before joining the master
     except WorldgenError as err:
         print(f"worldgen: error: {err}", file=sys.stderr, flush=True)
         return 2
@@ -372,6 +362,35 @@ def main(argv: list[str]) -> int:
             _ignore_interrupts()   # a second signal must not cut the trace short
             finish(rospy, bridge, config, timing)
     return 0
+
+
+def _has_camera(session, config: dict) -> bool:
+    """Whether any robot of the config has a camera (the first one is the session's)."""
+    from ...robots import robot_urdf
+    from ...robots.profile import robot_profile
+
+    if session.main.profile.cameras:
+        return True
+    others = (config.get("robots") or [{}])[1:]
+    return any(robot_profile(robot_urdf(e.get("robot") or "burger", e.get("mappings"))).cameras for e in others)
+
+
+def keep_freed_memory() -> None:
+    """Have glibc keep freed memory for reuse instead of giving it back to the system. Every camera picture makes
+    a few buffers of a megabyte (its bytes, rospy's serialisation); glibc would map each afresh and return it, and
+    touching a fresh megabyte page by page costs about a millisecond, more than the picture's own copies
+    (1.9 ms → 0.1 ms per 640 × 480 message). Big blocks come from the heap (below 32 MB) and up to 256 MB of free
+    heap is kept. Nothing happens where there is no glibc."""
+    import ctypes
+    import ctypes.util
+
+    m_trim_threshold, m_mmap_threshold = -1, -3
+    try:
+        libc = ctypes.CDLL(ctypes.util.find_library("c") or "libc.so.6")
+        libc.mallopt(m_mmap_threshold, 32 * 1024 * 1024)
+        libc.mallopt(m_trim_threshold, 256 * 1024 * 1024)
+    except (OSError, AttributeError):
+        pass
 
 
 def finish(rospy, bridge: Bridge, config: dict, timing: dict) -> None:

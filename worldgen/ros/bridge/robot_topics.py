@@ -86,8 +86,11 @@ class RobotTopics:
         self.trace = {"odom": [], "scans": [], "cmd": []}
         self.last_velocity = None
         self.now = 0.0
+        self.cameras: list = []   # its CameraTopics (:mod:`.camera_topics`), which the node adds
 
     def close(self) -> None:
+        for camera in self.cameras:
+            camera.close()
         self.cmd_sub.unregister()
         for publisher in self.pubs.values():
             publisher.unregister()

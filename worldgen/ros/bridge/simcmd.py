@@ -29,6 +29,7 @@ def sim(world: World, *, rate: float, duration: float | None, no_hit: str,
     from .rosenv import import_rospy
 
     import_rospy()   # InputError naming the package when rospy is missing
+    cameras = check_cameras(world)   # InputError naming the packages when a camera cannot be drawn
     uri = os.environ.get("ROS_MASTER_URI") or DEFAULT_URI
     with tempfile.TemporaryDirectory(prefix="worldgen_sim_") as tmp, Supervisor() as supervisor:
         env = dict(os.environ)
@@ -59,6 +60,7 @@ def sim(world: World, *, rate: float, duration: float | None, no_hit: str,
                   for r in world.robots] or [f"{world.robot} at ({x:g}, {y:g}, {yaw:g})"]
         say(f"worldgen sim: {'; '.join(robots)} in {world.path}, "
             f"{'as fast as it goes' if rate <= 0 else f'{rate:g}x real time'}; publishing {TOPICS}"
+            f"{'; ' + ' '.join(cameras) + ' while subscribed' if cameras else ''}"
             f"{' in each namespace' if world.robots else ''}. Ctrl-C stops.")
         try:
             while child.running:
@@ -73,6 +75,26 @@ def sim(world: World, *, rate: float, duration: float | None, no_hit: str,
         if code not in (0, None) and code > 0:
             return code
         return 0
+
+
+def check_cameras(world: World) -> list[str]:
+    """The camera topics of the world's first robot (as in the global namespace), after making sure that an
+    OpenGL context can be made when any robot has a camera: InputError naming the packages to install, before
+    anything starts."""
+    from ...robots import robot_urdf
+    from ...robots.cameras import camera_topic
+    from ...robots.profile import robot_profile
+
+    entries = world.robots or [{"robot": world.robot, "mappings": None}]
+    profiles = [robot_profile(robot_urdf(e["robot"], e.get("mappings"))) for e in entries]
+    if not any(p.cameras for p in profiles):
+        return []
+    from ...sim.camera import open_context
+
+    open_context().release()
+    return [topic for c in profiles[0].cameras for topic in
+            (camera_topic("/", c.camera_name, c.image_topic), camera_topic("/", c.camera_name, c.info_topic),
+             camera_topic("/", c.camera_name, c.image_topic) + "/compressed")]
 
 
 def parse_rate(text: str) -> float:

@@ -60,14 +60,17 @@ def _spawn_sdf(bridge, name: str, text: str, frame) -> tuple[bool, str]:
     own = scene.model_poses.get(scene.models[0])
     model_frame = matrix_of(own) if own is not None else poses.IDENTITY
     inverse = poses.inverse(model_frame)
-    local = []
-    for shape in shapes:
+
+    def local(shape):
         t = inverse @ poses.transform(shape.position, poses.quat_matrix(*shape.orientation))
-        local.append(dataclasses.replace(shape, position=tuple(float(v) for v in t[:3, 3]),
-                                         orientation=poses.matrix_quat(t[:3, :3]),
-                                         model=name + shape.model[len(scene.models[0]):]))
+        return dataclasses.replace(shape, position=tuple(float(v) for v in t[:3, 3]),
+                                   orientation=poses.matrix_quat(t[:3, :3]),
+                                   model=name + shape.model[len(scene.models[0]):])
+
     static = all(s.static for s in shapes)
-    bridge.session.models.spawn(name, local, frame @ model_frame, static, sdf_mass(text))
+    visuals = [local(v) for v in scene.visuals] if scene.visuals else None   # None: a camera draws the collisions
+    bridge.session.models.spawn(name, [local(s) for s in shapes], frame @ model_frame, static, sdf_mass(text),
+                                visuals=visuals)
     return True, OK
 
 

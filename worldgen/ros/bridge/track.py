@@ -16,6 +16,7 @@ from dataclasses import dataclass
 from ...core.errors import InputError
 
 CLOSE = 0.02   # m: the two ends of a line this close make a loop
+SNAP = 1e-4    # m: the grid the tape pieces' ends are put on before they are joined
 
 
 @dataclass
@@ -53,7 +54,9 @@ def tape_track(scene, where: str = "") -> Track:
             pieces.append(((centre - axis)[:2], (centre + axis)[:2]))
         if not pieces:
             continue
-        merged = linemerge(shapely.MultiLineString([[tuple(a), tuple(b)] for a, b in pieces]))
+        # the pieces' ends meet only to rounding: snapped to SNAP first, or linemerge would keep them apart
+        lines = shapely.set_precision(shapely.MultiLineString([[tuple(a), tuple(b)] for a, b in pieces]), SNAP)
+        merged = linemerge(lines)
         line = merged if merged.geom_type == "LineString" else max(merged.geoms, key=lambda g: g.length)
         if best is None or line.length > best[0].length:
             best = (line, marking)

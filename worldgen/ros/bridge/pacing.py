@@ -1,0 +1,101 @@
+"""How fast simulated time runs: at a fixed multiple of real time, or, at ``--rate max``, as fast as the nodes
+under test keep up (:class:`Governor`), judged by the bytes of messages waiting unread in their sockets
+(:class:`Backlog`).
+
+Those bytes are read from the kernel's socket tables (/proc/net/tcp), which costs the kernel a walk of every TCP
+socket of the machine: about 5 ms per table on a busy machine, whether the nodes have two sockets or twenty.
+Looking 20 times a second from the stepping loop took a fifth of its time (a third of what a camera run at max
+could do); a thread of its own looks instead, and the loop takes the latest answer. IPv6 sockets are looked at only
+when ROS uses IPv6 (``ROS_IPV6=on``, rospy's own rule), which halves the cost.
+"""
+
+from __future__ import annotations
+
+import os
+import threading
+import time
+from pathlib import Path
+
+BACKLOG = int(os.environ.get("WG_BACKLOG", "4096"))  # bytes unread by the nodes: they are falling behind
+CHECK_EVERY = float(os.environ.get("WG_CHECK", "0.05"))  # s of real time between looks at the nodes' sockets
+
+
+def unread_bytes(pids: list[int]) -> int:
+    """Bytes waiting unread in the TCP sockets of processes ``pids`` (Linux: their socket inodes in /proc/PID/fd,
+    matched with the rx_queue column of /proc/net/tcp, and tcp6 when ROS uses IPv6); 0 where /proc cannot tell."""
+    inodes = set()
+    for pid in pids:
+        try:
+            for fd in os.listdir(f"/proc/{pid}/fd"):
+                try:
+                    target = os.readlink(f"/proc/{pid}/fd/{fd}")
+                except OSError:
+                    continue
+                if target.startswith("socket:["):
+                    inodes.add(target[8:-1])
+        except OSError:
+            continue
+    if not inodes:
+        return 0
+    total = 0
+    tables = ("/proc/net/tcp", "/proc/net/tcp6") if os.environ.get("ROS_IPV6") == "on" else ("/proc/net/tcp",)
+    for table in tables:
+        try:
+            lines = Path(table).read_text().splitlines()[1:]
+        except OSError:
+            continue
+        for line in lines:
+            fields = line.split()
+            if len(fields) > 9 and fields[9] in inodes:
+                total += int(fields[4].split(":")[1], 16)
+    return total
+
+
+class Backlog:
+    """What the watched processes leave unread, measured every :data:`CHECK_EVERY` s in a thread of its own:
+    ``sample`` is (when, bytes), the smaller of two looks in a row (what persists, not a message in flight)."""
+
+    def __init__(self, pids: list[int]):
+        self.pids = list(pids)
+        self.sample: tuple[float, int] | None = None
+        self.stopped = threading.Event()
+        self.thread = threading.Thread(target=self._watch, name="worldgen-backlog", daemon=True)
+        self.thread.start()
+
+    def _watch(self) -> None:
+        previous = 0
+        while not self.stopped.wait(CHECK_EVERY):
+            now = unread_bytes(self.pids)
+            self.sample, previous = (time.monotonic(), min(now, previous)), now
+
+    def stop(self) -> None:
+        self.stopped.set()
+
+
+class Governor:
+    """Paces simulated time: at ``rate`` × real time, or, at rate 0 (max), as fast as the watched processes (the
+    nodes under test) keep up: when more than :data:`BACKLOG` bytes of messages wait unread in their sockets, they
+    are falling behind, and the pace drops below what was achieved; when nothing waits, it rises again, up to no
+    limit. (A node that lags reacts late in simulated time, which Gazebo at real time never shows.)"""
+
+    def __init__(self, rate: float, backlog: Backlog | None, sim_t: float = 0.0):
+        self.rate, self.backlog = rate, backlog
+        self.anchor_wall, self.anchor_sim = time.monotonic(), sim_t
+        self.limit = rate if rate > 0 else None   # None: no limit
+        self.last_check = self.anchor_wall
+
+    def pace(self, sim_t: float) -> None:
+        now = time.monotonic()
+        sample = self.backlog.sample if self.rate <= 0 and self.backlog is not None else None
+        if sample is not None and sample[0] > self.last_check:
+            waiting = sample[1]
+            achieved = (sim_t - self.anchor_sim) / max(now - self.anchor_wall, 1e-6)
+            if waiting > BACKLOG:
+                self.limit = max(1.0, min(achieved, self.limit or achieved) * 0.7)
+            elif waiting == 0 and self.limit is not None:
+                self.limit = self.limit * 1.5 if self.limit < 200 else None
+            self.anchor_wall, self.anchor_sim, self.last_check = now, sim_t, now
+        if self.limit is not None:
+            ahead = self.anchor_wall + (sim_t - self.anchor_sim) / self.limit - now
+            if ahead > 0.0005:
+                time.sleep(ahead)
