@@ -56,7 +56,7 @@ def task_context(world: World, task: str | None):
         lookahead = camera_floor_distance(world.robot)
         if lookahead is None:
             raise InputError(f"--task line-follow needs a robot with a camera; {world.robot} has none",
-                             hint="give --robot waffle_pi (its Raspberry Pi camera is the class's)")
+                             hint="give --robot waffle_pi, the class's robot with a camera")
         return tape_track(world.scene, str(world.path)), lookahead
     return None
 
