@@ -95,6 +95,10 @@ def run_text(result: Result, task: str | None, nodes: list[str]) -> str:
                      f"{r.get('cmd_vel_messages', 0)}; path {_m(r.get('path_length_m'))}; final pose "
                      + (f"({pose[0]:.2f}, {pose[1]:.2f}, {pose[2]:.2f})" if pose else "–")
                      + f"; contacts {len(r.get('contacts') or [])}")
+    if task == "line-follow" and m.get("share_on_line") is not None:
+        lines.append(f"  on the tape {m['share_on_line']:.0%} of the time (the camera's floor point, "
+                     f"{m['camera_floor_distance_m']:.2f} m ahead, within 0.1 m of its centre-line); "
+                     f"{m['laps']:.2f} laps of the {m['tape_length_m']:.2f} m tape")
     for f in result.sorted_findings():
         lines.append(f"  {f.severity:<7} {f.check}: {f.message}")
         if f.fix:
