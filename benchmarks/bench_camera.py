@@ -29,7 +29,7 @@ BATCHES = 7
 
 RENDER = r"""
 import json, statistics, sys, time
-from worldgen.ros.bridge.world import load_world
+from worldgen.bridge.world import load_world
 from worldgen.sim.session import Session
 world = load_world(sys.argv[1], robot=sys.argv[2])
 batches, frames = int(sys.argv[3]), int(sys.argv[4])
@@ -63,7 +63,7 @@ def cpu_seconds(pid: int) -> float:
 def simulator_pid(marker: bytes) -> int | None:
     for entry in Path("/proc").iterdir():
         try:
-            if entry.name.isdigit() and b"worldgen.ros.bridge.node" in (entry / "cmdline").read_bytes() and \
+            if entry.name.isdigit() and b"worldgen.bridge.node" in (entry / "cmdline").read_bytes() and \
                     marker in (entry / "environ").read_bytes():
                 return int(entry.name)
         except OSError:

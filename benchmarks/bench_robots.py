@@ -73,7 +73,7 @@ def simulator_pid(env: dict) -> int | None:
     marker = f"ROS_MASTER_URI={env['ROS_MASTER_URI']}".encode()
     for entry in Path("/proc").iterdir():
         try:
-            if entry.name.isdigit() and b"worldgen.ros.bridge.node" in (entry / "cmdline").read_bytes() and \
+            if entry.name.isdigit() and b"worldgen.bridge.node" in (entry / "cmdline").read_bytes() and \
                     marker in (entry / "environ").read_bytes():
                 return int(entry.name)
         except OSError:

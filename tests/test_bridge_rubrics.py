@@ -8,8 +8,8 @@ import math
 
 import pytest
 
-from worldgen.ros.bridge.metrics import compute
-from worldgen.ros.bridge.rubrics import judge
+from worldgen.bridge.metrics import compute
+from worldgen.bridge.rubrics import judge
 
 DT = 1 / 30
 

@@ -67,7 +67,7 @@ def student_node(folder, missing: str):
 @pytest.fixture
 def nothing_may_start(monkeypatch):
     """Fails the test if a run gets as far as starting a master and the simulator."""
-    import worldgen.ros.bridge.run as bridge_run
+    import worldgen.bridge.run as bridge_run
 
     def refuse(*args, **kwargs):
         raise AssertionError("run_nodes was called: a master and the simulator would have started")

@@ -314,7 +314,7 @@ def test_a_symlink_loop_in_a_class_folder_is_walked_once(tmp_path):
     """A link back up the tree (a student's `ln -s .. up`) neither hangs the search nor counts a package twice; a
     workspace's install space, holding copies of the manifests, is not searched."""
     from worldgen.check.discover import find_packages
-    from worldgen.ros.bridge.grade import submissions
+    from worldgen.bridge.grade import submissions
 
     cli("scaffold", "lab_a", "rospy", "-p", tmp_path / "class" / "ana" / "src", check_code=0)
     (tmp_path / "class" / "ana" / ".catkin_workspace").write_text("")

@@ -22,14 +22,15 @@ LAYERS = {
     "spec": 1,
     "geometry": 2, "robots": 2,
     "sdf": 3,
-    "sim": 4, "ros": 4,
+    "sim": 4, "ros": 4,   # ros: the files of ROS 1 and ROS 2 (launch files, packages; writers and readers)
     "check": 5,
-    "preview": 6, "ros.bridge": 6,   # the ROS side of the simulator: on sim and check, beside preview
+    "preview": 6, "bridge": 6,   # the live ROS 1 side of the simulator: on sim, ros and check, beside preview
     "cli": 7,
     "": -1,         # worldgen/__init__.py: the version, importing nothing
     "__main__": 8,  # python -m worldgen
 }
-WRITERS = ("worldgen.sdf.writer", "worldgen.ros.launch", "worldgen.ros.scaffold", "worldgen.ros.course")
+WRITERS = ("worldgen.sdf.writer", "worldgen.sdf.gzsim", "worldgen.ros.launch", "worldgen.ros.launch_py",
+           "worldgen.ros.scaffold", "worldgen.ros.ament", "worldgen.ros.course", "worldgen.ros.course2")
 BUILD_PATH = ("worldgen.spec.load", "worldgen.geometry.building", "worldgen.sdf.writer")
 HEAVY = ("pybullet", "trimesh", "shapely")
 
@@ -75,8 +76,6 @@ def graph(top_level_only: bool = False) -> dict[str, set[str]]:
 
 def part(module: str) -> str:
     parts = module.split(".")
-    if parts[1:3] == ["ros", "bridge"]:
-        return "ros.bridge"
     return parts[1] if len(parts) > 1 else ""
 
 
@@ -129,9 +128,10 @@ def test_every_part_is_in_a_layer():
     assert parts <= set(LAYERS), f"parts with no layer: {sorted(parts - set(LAYERS))}"
 
 
-def test_root_reads_as_the_design_in_at_most_ten_entries():
+def test_root_reads_as_the_design_in_at_most_eleven_entries():
+    """The package's root is its parts, one entry each (ten folders and the preview), as the README draws them."""
     entries = [p.name for p in PACKAGE.iterdir() if not p.name.startswith("__") and p.name != "py.typed"]
-    assert len(entries) <= 10, sorted(entries)
+    assert len(entries) <= 11 and set(entries) <= {f"{n}.py" for n in LAYERS} | set(LAYERS), sorted(entries)
 
 
 def test_no_module_imports_in_a_circle():
@@ -198,6 +198,15 @@ def test_the_simulation_never_imports_ros():
 def test_the_bridge_and_the_preview_do_not_import_each_other():
     g = graph()
     for module, imported in g.items():
-        if part(module) in ("ros.bridge", "preview"):
-            other = {"ros.bridge": "preview", "preview": "ros.bridge"}[part(module)]
+        if part(module) in ("bridge", "preview"):
+            other = {"bridge": "preview", "preview": "bridge"}[part(module)]
             assert not [m for m in imported if m.startswith("worldgen") and part(m) == other], module
+
+
+def test_each_folder_is_one_layer():
+    """Every folder of the package is one part with one layer: no module sits a layer above the rest of its
+    folder (the live bridge once lived in ros/, above the launch-file readers and writers beside it)."""
+    for folder in (p for p in PACKAGE.iterdir() if p.is_dir() and (p / "__init__.py").exists()):
+        assert folder.name in LAYERS, folder
+        nested = [p for p in folder.rglob("__init__.py") if p.parent != folder]
+        assert nested == [], f"{folder.name} holds sub-packages {nested}: give each its own part"

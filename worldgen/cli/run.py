@@ -8,7 +8,7 @@ from pathlib import Path
 import click
 
 from ..core.errors import EXIT_FAILED, EXIT_OK
-from ..ros.bridge.rubrics import TASKS
+from ..bridge.rubrics import TASKS
 from .drive import FiniteFloat
 
 
@@ -57,7 +57,7 @@ def run(world, nodes, task, target, duration, rate, spawn, launch_file, robot, r
     and gets one result, as `validate` reports files.
     """
     from ..core.spawnpose import parse_spawn
-    from ..ros.bridge.simcmd import parse_rate
+    from ..bridge.simcmd import parse_rate
 
     from ..check.discover import parse_shard
 
@@ -65,7 +65,7 @@ def run(world, nodes, task, target, duration, rate, spawn, launch_file, robot, r
     shard_k_n = parse_shard(shard) if shard is not None else None
     spawn_pose = parse_spawn(spawn) if spawn is not None else None
     if world.is_dir() and not (world / "model.sdf").is_file() and not (world / "model.config").is_file():
-        from ..ros.bridge.grade import grade_folder
+        from ..bridge.grade import grade_folder
 
         results = grade_folder(world, folder_world, task=task, target=target, duration=duration, rate=pace,
                                spawn=spawn_pose, robot=robot, no_hit=lidar_no_hit, jobs=jobs, nodes=nodes,
@@ -77,7 +77,7 @@ def run(world, nodes, task, target, duration, rate, spawn, launch_file, robot, r
 
         raise InputError("--shard takes a folder of submissions", path=world,
                          hint="give the folder holding one package per student, or leave out --shard")
-    from ..ros.bridge.single import run_single
+    from ..bridge.single import run_single
 
     result, text = run_single(world, nodes, task=task, target=target, duration=duration, rate=pace,
                               spawn=spawn_pose, robot=robot, no_hit=lidar_no_hit, fmt=fmt, junit=junit, plot=plot,
@@ -89,7 +89,7 @@ def run(world, nodes, task, target, duration, rate, spawn, launch_file, robot, r
 def _write_reports(results, fmt: str, junit: Path | None) -> None:
     from ..check.report import to_json, to_junit
     from ..core.fsio import write_file
-    from ..ros.bridge.report import folder_text
+    from ..bridge.report import folder_text
 
     if junit is not None:
         write_file(junit, to_junit(results, suite_name="worldgen run"), force=True)

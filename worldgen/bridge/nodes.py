@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Sequence
 
-from ...core.errors import InputError
+from ..core.errors import InputError
 
 # Packages whose nodes worldgen itself stands in for when a launch file starts them.
 STAND_INS = frozenset({"gazebo_ros", "robot_state_publisher", "joint_state_publisher", "xacro", "rviz",
@@ -113,7 +113,7 @@ def _python_file(path: Path, python: str, args: list[str], name: str | None = No
 
 
 def _index(search: Sequence[str | Path]):
-    from ...core import packages
+    from ..core import packages
 
     return packages.PackageIndex([Path(p) for p in search] + packages.ros_package_path())
 
@@ -136,7 +136,7 @@ def _package_node(item: str, python: str, search: Sequence[str | Path], args: li
 
 
 def _launch_nodes(path: Path, python: str, search: Sequence[str | Path], args: list[str]) -> list[NodeSpec]:
-    from ..launch_reader import read_launch
+    from ..ros.launch_reader import read_launch
 
     if not path.is_file():
         raise InputError("no such launch file", path=path, hint="check the path")
@@ -146,7 +146,7 @@ def _launch_nodes(path: Path, python: str, search: Sequence[str | Path], args: l
     if unknown:
         raise InputError(f"the launch file has no arg {unknown[0]!r}", path=path,
                          hint=f"its args are: {', '.join(sorted(info.args)) or 'none'}")
-    from ...core import packages
+    from ..core import packages
 
     own = packages.owning_package(path)
     roots = list(search) + ([own, packages.source_tree(own)] if own is not None else [])

@@ -9,8 +9,8 @@ import json
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from ...core.errors import InputError, WorldFileError
-from ...core.scene import Scene
+from ..core.errors import InputError, WorldFileError
+from ..core.scene import Scene
 
 
 @dataclass
@@ -29,8 +29,8 @@ def load_world(path: str | Path, *, spawn=None, robot: str | None = None, launch
                model_paths=()) -> World:
     """Read the input (see the module docstring). ``spawn``/``robot`` override what the files say; ``launch``
     takes the spawn pose and robot from that launch file. InputError or WorldFileError when it cannot be read."""
-    from ...check.sources import load_scene
-    from ...check.validate import input_kind
+    from ..check.sources import load_scene
+    from ..check.validate import input_kind
 
     path = Path(path)
     if not path.exists():
@@ -61,7 +61,7 @@ def load_world(path: str | Path, *, spawn=None, robot: str | None = None, launch
     if spawn is not None:
         found_spawn, spawn_src = tuple(spawn), "--spawn"
     if found_robot is not None:
-        from ...robots import MODELS, robot_file
+        from ..robots import MODELS, robot_file
 
         file = robot_file(found_robot)   # InputError for an unknown model or missing file
         found_robot = found_robot if found_robot in MODELS else str(file)
@@ -73,7 +73,7 @@ def load_world(path: str | Path, *, spawn=None, robot: str | None = None, launch
 
 
 def _from_launch(path: Path, need_world: bool = True):
-    from ..launch_reader import read_launch
+    from ..ros.launch_reader import read_launch
 
     info = read_launch(path)
     spawn = None

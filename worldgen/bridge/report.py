@@ -7,7 +7,7 @@ from __future__ import annotations
 import json
 import math
 
-from ...check.report import Result, _clean
+from ..check.report import Result, _clean
 from .run import Outcome
 from .world import World
 
@@ -17,7 +17,7 @@ def room_side(world: World) -> float | None:
     try:
         import shapely
 
-        from ...geometry.placement import world_rooms
+        from ..geometry.placement import world_rooms
 
         rooms = world_rooms(world.scene, 0.0)
         here = shapely.Point(world.spawn[0], world.spawn[1])
@@ -50,7 +50,7 @@ def task_context(world: World, task: str | None):
     if task == "wall-follow":
         return room_side(world)
     if task == "line-follow":
-        from ...core.errors import InputError
+        from ..core.errors import InputError
         from .track import camera_floor_distance, tape_track
 
         lookahead = camera_floor_distance(world.robot)

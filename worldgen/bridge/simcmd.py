@@ -12,7 +12,7 @@ from pathlib import Path
 from typing import Callable
 from urllib.parse import urlparse
 
-from ...core.errors import InputError
+from ..core.errors import InputError
 from .master import master_answers, set_param, start_master
 from .gazebo_types import gazebo_msgs_path
 from .supervise import Supervisor
@@ -51,9 +51,9 @@ def sim(world: World, *, rate: float, duration: float | None, no_hit: str,
                 f"export PYTHONPATH={generated}:$PYTHONPATH")
         config = write_config(Path(tmp), world, rate=rate, duration=duration, no_hit=no_hit, trace=None,
                               set_sim_time=True)
-        root = str(Path(__file__).resolve().parents[3])
+        root = str(Path(__file__).resolve().parents[2])
         env["PYTHONPATH"] = os.pathsep.join(p for p in (root, env.get("PYTHONPATH")) if p)
-        child = supervisor.start("simulator", [sys.executable, "-m", "worldgen.ros.bridge.node", str(config)], env,
+        child = supervisor.start("simulator", [sys.executable, "-m", "worldgen.bridge.node", str(config)], env,
                                  show_errors=True)
         x, y, yaw = world.spawn
         robots = [f"{r['ns']}: {r['robot']} at ({r['spawn'][0]:g}, {r['spawn'][1]:g}, {r['spawn'][2]:g})"
@@ -81,15 +81,15 @@ def check_cameras(world: World) -> list[str]:
     """The camera topics of the world's first robot (as in the global namespace), after making sure that an
     OpenGL context can be made when any robot has a camera: InputError naming the packages to install, before
     anything starts."""
-    from ...robots import robot_urdf
-    from ...robots.cameras import camera_topic
-    from ...robots.profile import robot_profile
+    from ..robots import robot_urdf
+    from ..robots.cameras import camera_topic
+    from ..robots.profile import robot_profile
 
     entries = world.robots or [{"robot": world.robot, "mappings": None}]
     profiles = [robot_profile(robot_urdf(e["robot"], e.get("mappings"))) for e in entries]
     if not any(p.cameras for p in profiles):
         return []
-    from ...sim.camera import open_context
+    from ..sim.camera import open_context
 
     open_context().release()
     return [topic for c in profiles[0].cameras for topic in

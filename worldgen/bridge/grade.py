@@ -15,9 +15,9 @@ from __future__ import annotations
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
-from ...check.report import Result
-from ...core.errors import InputError, WorldgenError
-from ...core.findings import Finding
+from ..check.report import Result
+from ..core.errors import InputError, WorldgenError
+from ..core.findings import Finding
 
 TASK_NODES = {"stop-at-wall": "stop_at_wall.py", "spin": "spin_in_circles.py", "drive-square": "drive_square.py",
               "wall-follow": "wall_follower.py", "person-follow": "person_follower.py",
@@ -28,7 +28,7 @@ MASTER_TRIES = 3
 def submissions(folder: Path) -> list[Path]:
     """The catkin packages under ``folder`` (crawled as rospack does; a workspace through its ``src/`` only),
     else its subfolders; sorted."""
-    from ...core.packages import crawl
+    from ..core.packages import crawl
 
     found = [p for p in crawl(folder, workspaces=True) if p != folder]
     if not found:
@@ -55,7 +55,7 @@ def grade_folder(folder: Path, world_path: Path | None, *, task, target, duratio
                  nodes=(), shard: tuple[int, int] | None = None, launch=None) -> list[Result]:
     """One result per submission in ``folder`` (each run in its own master, ``jobs`` at once); with ``shard``
     (K, N), only the K-th of N stable shares of the submissions (:func:`worldgen.check.discover.shard`)."""
-    from ...core.resources import examples_dir
+    from ..core.resources import examples_dir
     from .preflight import blocked_result, many_findings
     from .report import result_of, task_context
     from .rosenv import import_rospy, node_python
@@ -73,7 +73,7 @@ def grade_folder(folder: Path, world_path: Path | None, *, task, target, duratio
         raise InputError("holds no submissions (no catkin packages, no folders)", path=folder,
                          hint="give the folder holding one folder or package per student")
     if shard is not None:
-        from ...check.discover import shard as take_shard
+        from ..check.discover import shard as take_shard
 
         found = take_shard(found, *shard, key=str)
     options = RunOptions(duration=parse_duration(duration, task), rate=rate, no_hit=no_hit, task=task, target=target,

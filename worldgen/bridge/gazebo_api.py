@@ -29,8 +29,8 @@ import threading
 
 import numpy as np
 
-from ...core import poses
-from ...sim.models import matrix_of, pose_of
+from ..core import poses
+from ..sim.models import matrix_of, pose_of
 from .pose_msgs import fill_pose, fill_twist, pose7
 
 CALL_TIMEOUT = 10.0   # s of real time a service call waits for the loop

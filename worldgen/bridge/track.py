@@ -13,7 +13,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from ...core.errors import InputError
+from ..core.errors import InputError
 
 CLOSE = 0.02   # m: the two ends of a line this close make a loop
 SNAP = 1e-4    # m: the grid the tape pieces' ends are put on before they are joined
@@ -40,8 +40,8 @@ def tape_track(scene, where: str = "") -> Track:
     import shapely
     from shapely.ops import linemerge
 
-    from ...core.poses import quat_matrix
-    from ...geometry.markings import floor_markings
+    from ..core.poses import quat_matrix
+    from ..geometry.markings import floor_markings
 
     best = None
     for marking in floor_markings(scene):
@@ -71,8 +71,8 @@ def tape_track(scene, where: str = "") -> Track:
 def camera_floor_distance(robot: str) -> float | None:
     """How far ahead of the robot's base the middle of its first camera's bottom image row meets the floor (m),
     or None when the robot has no camera looking down on the floor."""
-    from ...robots import robot_urdf
-    from ...robots.profile import link_frames, robot_profile
+    from ..robots import robot_urdf
+    from ..robots.profile import link_frames, robot_profile
 
     profile = robot_profile(robot_urdf(robot))
     if not profile.cameras:

@@ -13,9 +13,9 @@ import dataclasses
 import math
 import xml.etree.ElementTree as ET
 
-from ...core import poses
-from ...core.errors import WorldgenError
-from ...sim.models import matrix_of
+from ..core import poses
+from ..core.errors import WorldgenError
+from ..sim.models import matrix_of
 from .pose_msgs import pose7
 
 OK = "SpawnModel: Successfully spawned entity"
@@ -46,7 +46,7 @@ def spawn_model(bridge, req, kind: str) -> tuple[bool, str]:
 
 
 def _spawn_sdf(bridge, name: str, text: str, frame) -> tuple[bool, str]:
-    from ...sdf.reader import read_world_text
+    from ..sdf.reader import read_world_text
 
     if not text.lstrip().startswith("<sdf") and not text.lstrip().startswith("<?xml"):
         text = f'<sdf version="1.6">{text}</sdf>'
@@ -75,7 +75,7 @@ def _spawn_sdf(bridge, name: str, text: str, frame) -> tuple[bool, str]:
 
 
 def _spawn_robot(bridge, name: str, urdf: str, frame, namespace: str) -> tuple[bool, str]:
-    from ...robots.profile import robot_profile
+    from ..robots.profile import robot_profile
 
     try:
         profile = robot_profile(urdf)

@@ -13,7 +13,7 @@ import time
 import xmlrpc.client
 from pathlib import Path
 
-from ...core.errors import InputError
+from ..core.errors import InputError
 from .supervise import Child, Supervisor
 
 CALLER = "/worldgen"

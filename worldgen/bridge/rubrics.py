@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import math
 
-from ...core.findings import Finding
+from ..core.findings import Finding
 from .metrics import stopped
 
 TASKS = ("stop-at-wall", "spin", "drive-square", "wall-follow", "person-follow", "line-follow")

@@ -21,8 +21,8 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from ...core.errors import WorldgenError
-from ...core.findings import Finding
+from ..core.errors import WorldgenError
+from ..core.findings import Finding
 from .master import node_names, ros_env, set_param, start_master
 from .nodes import NodeSpec
 from .supervise import Child, Supervisor
@@ -69,7 +69,7 @@ def with_gazebo_msgs(env: dict[str, str]) -> dict[str, str]:
 
 
 def _bridge_env(env: dict[str, str]) -> dict[str, str]:
-    root = str(Path(__file__).resolve().parents[3])
+    root = str(Path(__file__).resolve().parents[2])
     parts = [root] + [p for p in env.get("PYTHONPATH", "").split(os.pathsep) if p and p != root]
     return dict(env, PYTHONPATH=os.pathsep.join(parts))
 
@@ -94,7 +94,7 @@ def run_nodes(world: World, nodes: list[NodeSpec], options: RunOptions, base_env
                               trace=str(trace_file), bag=str(options.bag) if options.bag else None,
                               start_param=START_PARAM, person=options.person, set_sim_time=False,
                               graded=options.robot_ns)
-        simulator = supervisor.start("simulator", [sys.executable, "-m", "worldgen.ros.bridge.node", str(config)],
+        simulator = supervisor.start("simulator", [sys.executable, "-m", "worldgen.bridge.node", str(config)],
                                      _bridge_env(env), log=tmp / "simulator.log")
         _wait_for_simulator(simulator, uri)
         children = [supervisor.start(n.name, n.argv, dict(env, **n.env), log=tmp / f"node_{i}.log")
@@ -215,6 +215,6 @@ def parse_duration(value: float | None, task: str | None) -> float:
 
 
 def check_outputs(paths, force: bool) -> None:
-    from ...core.fsio import check_free
+    from ..core.fsio import check_free
 
     check_free([p for p in paths if p is not None], force)

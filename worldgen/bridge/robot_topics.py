@@ -198,7 +198,7 @@ class RobotTopics:
 
     def publish_scan(self, session, stamp) -> bool:
         """One scan (and a trace line); True when some node listens to it."""
-        from ...sim.lidar import front_distance
+        from ..sim.lidar import front_distance
 
         r = self.robot
         scan = session.scan_of(r)

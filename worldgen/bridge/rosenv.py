@@ -17,7 +17,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-from ...core.errors import InputError
+from ..core.errors import InputError
 
 NOETIC = "/opt/ros/noetic/lib/python3/dist-packages"
 DEBIAN = "/usr/lib/python3/dist-packages"

@@ -35,7 +35,7 @@ then, after each scan that some node listens to, waits (at most 50 ms of real ti
 answers it, so that a node reacting to scans reacts within the same scan period, as it does in Gazebo at real
 time. Camera pictures are drawn in the step they are due, so their cost slows the pace as any other work does.
 
-Run as ``python -m worldgen.ros.bridge.node CONFIG.json`` (see :func:`main`); a trace of what the robot did is
+Run as ``python -m worldgen.bridge.node CONFIG.json`` (see :func:`main`); a trace of what the robot did is
 written to the config's ``trace`` file at the end, for :mod:`.metrics`.
 """
 
@@ -139,7 +139,7 @@ class Bridge:
         cameras = [c for c in topics.robot.profile.cameras if c.link in topics.robot.link_index]
         if not cameras:
             return
-        from ...core.errors import WorldgenError
+        from ..core.errors import WorldgenError
         from .camera_topics import CameraTopics
 
         try:
@@ -317,8 +317,8 @@ def main(argv: list[str]) -> int:
     name of the robot the trace is about), no_hit, rate (0 = max), duration (s or null), trace (file or null), bag
     (file or null), start_param (null: start at once), person (null or the loop), set_sim_time (bool),
     gazebo_msgs (a folder to import gazebo_msgs from, or null)."""
-    from ...core.errors import WorldgenError
-    from ...core.scene import Scene
+    from ..core.errors import WorldgenError
+    from ..core.scene import Scene
     from .rosenv import import_rospy
 
     keep_freed_memory()
@@ -327,7 +327,7 @@ def main(argv: list[str]) -> int:
         sys.path.insert(0, config["gazebo_msgs"])
     try:
         rospy = import_rospy()
-        from ...sim.session import Session
+        from ..sim.session import Session
 
         first = (config.get("robots") or [{}])[0]
         session = Session(Scene.load(config["scene_file"]), first.get("robot") or config.get("robot") or "burger",
@@ -366,8 +366,8 @@ def main(argv: list[str]) -> int:
 
 def _has_camera(session, config: dict) -> bool:
     """Whether any robot of the config has a camera (the first one is the session's)."""
-    from ...robots import robot_urdf
-    from ...robots.profile import robot_profile
+    from ..robots import robot_urdf
+    from ..robots.profile import robot_profile
 
     if session.main.profile.cameras:
         return True

@@ -10,7 +10,7 @@ def run_single(world_path: Path, node_args, *, task, target, duration, rate, spa
     """Check everything (exit-2 errors before anything starts; then every node's imports, a failed result
     without starting anything when some are missing: see :mod:`.preflight`), run, write the files; returns the
     :class:`~worldgen.check.report.Result` and the report text."""
-    from ...core.fsio import check_free, write_files
+    from ..core.fsio import check_free, write_files
     from .nodes import resolve_nodes
     from .preflight import node_findings
     from .report import result_of, run_json, run_text, task_context
@@ -49,7 +49,7 @@ def run_single(world_path: Path, node_args, *, task, target, duration, rate, spa
             from .record import trace_csv
             files[csv_path] = trace_csv(outcome.trace)
         if junit is not None:
-            from ...check.report import to_junit
+            from ..check.report import to_junit
             files[junit] = to_junit([result])
         if files:
             write_files(files, force=True)
@@ -69,8 +69,8 @@ def _blocked(world_path: Path, world, missing, task, fmt, junit, names: list[str
 
     result = blocked_result(str(world_path), world, missing, task)
     if junit is not None:
-        from ...check.report import to_junit
-        from ...core.fsio import write_files
+        from ..check.report import to_junit
+        from ..core.fsio import write_files
 
         write_files({junit: to_junit([result])}, force=True)
     return result, run_json(result, task) if fmt == "json" else blocked_text(result, task, names)

@@ -15,10 +15,10 @@ import sys
 from pathlib import Path
 from typing import Mapping, Sequence
 
-from ...check.report import Result
-from ...core.errors import WorldgenError
-from ...core.findings import Finding
-from ..runtime_check import findings, survey
+from ..check.report import Result
+from ..core.errors import WorldgenError
+from ..core.findings import Finding
+from ..ros.runtime_check import findings, survey
 from .nodes import NodeSpec
 
 

@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import io
 
-from ...robots.cameras import CameraParams, camera_topic
+from ..robots.cameras import CameraParams, camera_topic
 from .robot_topics import frame
 
 JPEG_QUALITY = 80         # compressed_image_transport's default jpeg_quality
@@ -65,7 +65,7 @@ class CameraTopics:
         wanted = self.wanted()
         if not wanted:
             return False
-        from ...sim.camera import encoded
+        from ..sim.camera import encoded
 
         rgb = session.camera_image(self.robot, self.camera)
         self.frames += 1

@@ -19,7 +19,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-from ...core.errors import InputError
+from ..core.errors import InputError
 
 MESSAGES = {
     "ModelState": """\
