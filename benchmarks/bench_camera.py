@@ -21,6 +21,8 @@ import sys
 import time
 from pathlib import Path
 
+from procs import cpu_seconds, simulator_pid   # benchmarks/procs.py, beside this script
+
 REPO = Path(__file__).resolve().parent.parent
 NODE = REPO / "tests" / "rosnodes" / "camera_steer.py"
 ROOM = REPO / "examples" / "enclosed_room.yaml"
@@ -53,22 +55,6 @@ def render_ms(robot: str, env_extra: dict, pin: bool, batches: int) -> dict:
         cmd = ["taskset", "-c", "0"] + cmd
     out = subprocess.run(cmd, env=env, capture_output=True, text=True, check=True).stdout
     return json.loads(out.strip().splitlines()[-1])
-
-
-def cpu_seconds(pid: int) -> float:
-    fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
-    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
-
-
-def simulator_pid(marker: bytes) -> int | None:
-    for entry in Path("/proc").iterdir():
-        try:
-            if entry.name.isdigit() and b"worldgen.bridge.node" in (entry / "cmdline").read_bytes() and \
-                    marker in (entry / "environ").read_bytes():
-                return int(entry.name)
-        except OSError:
-            continue
-    return None
 
 
 def run(rate: str, duration: float, pin: bool = False) -> dict:

@@ -20,6 +20,8 @@ import tempfile
 import time
 from pathlib import Path
 
+from procs import cpu_seconds, simulator_pid   # benchmarks/procs.py, beside this script
+
 REPO = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(REPO))
 SYSTEM_PYTHON = "/usr/bin/python3"
@@ -64,23 +66,6 @@ def robots_launch(folder: Path, count: int) -> Path:
     return path
 
 
-def cpu_seconds(pid: int) -> float:
-    fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
-    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
-
-
-def simulator_pid(env: dict) -> int | None:
-    marker = f"ROS_MASTER_URI={env['ROS_MASTER_URI']}".encode()
-    for entry in Path("/proc").iterdir():
-        try:
-            if entry.name.isdigit() and b"worldgen.bridge.node" in (entry / "cmdline").read_bytes() and \
-                    marker in (entry / "environ").read_bytes():
-                return int(entry.name)
-        except OSError:
-            continue
-    return None
-
-
 def simulator_cpu(tmp: Path, count: int) -> float:
     """The simulator's share of one core while it runs ``count`` robots at 1x, each with its node."""
     launch = robots_launch(tmp, count)
@@ -102,7 +87,7 @@ def simulator_cpu(tmp: Path, count: int) -> float:
             nodes.append(subprocess.Popen([SYSTEM_PYTHON, str(NODE), f"__ns:=/tb3_{i}"], env=env,
                                           stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL))
         time.sleep(3.0)   # the nodes up and connected
-        pid = simulator_pid(env)
+        pid = simulator_pid(f"ROS_MASTER_URI={env['ROS_MASTER_URI']}".encode())
         before, start = cpu_seconds(pid), time.monotonic()
         time.sleep(MEASURE)
         share = (cpu_seconds(pid) - before) / (time.monotonic() - start)

@@ -35,7 +35,7 @@ from .launch_py_gazebo import (GAZEBO_LAUNCH, GAZEBO_PACKAGES, NAME_FLAGS, POSE_
                                words)
 from .launch_py_scope import STATIC_FIX, PyRead, Scope
 from .launch_py_values import LAUNCH_CALLS, Action, Cond, Config, Description, Source
-from .launch_walk import MAX_INCLUDE_DEPTH, MAX_LAUNCH_FILES
+from .launch_walk import count_include
 from .pystatic import call_function, parse_python, read_module
 from .pystdlib import env_value
 from .pyvalues import MAX_NESTING, Ctx, Function, Located, Unknown, first_unknown, not_run, shown
@@ -78,16 +78,7 @@ def read_launch_py(path: str | Path, args: Mapping[str, str] | None = None, *, f
 def load(read: PyRead, path: Path, configs: Dict[str, object], ns: str, line: int | None, nesting: int = 0) -> None:
     """Read the launch file ``path`` (its launch configurations ``configs``, in namespace ``ns``, included
     ``nesting`` actions deep) into ``read``."""
-    if path.resolve() in read.stack:
-        raise WorldFileError("a launch file includes itself", path=path, line=line,
-                             hint="remove the circular IncludeLaunchDescription")
-    if len(read.stack) >= MAX_INCLUDE_DEPTH:
-        raise WorldFileError("includes nest too deeply", path=path, line=line, hint="remove circular includes")
-    read.loaded += 1
-    if read.loaded > MAX_LAUNCH_FILES:
-        raise WorldFileError(f"more than {MAX_LAUNCH_FILES} launch files are read for this one (includes inside "
-                             "includes, each counted)", path=path, line=line,
-                             hint="include fewer files (see Limits in the README)")
+    count_include(read, path, line, "IncludeLaunchDescription")
     tree = parse_python(path, "launch file")
     scope = Scope(read, path, configs, ns, nesting=nesting)
     ctx = Ctx(path, read.environ, LAUNCH_CALLS, on_skip=_on_skip(read), state=scope)

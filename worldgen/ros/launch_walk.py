@@ -87,16 +87,7 @@ def load_launch(read: LaunchRead, path: Path, passed: Dict[str, ArgValue], ns: s
     ``outer`` whose remaps and env carry over) into ``read``; the top-level file's args become
     ``read.info.args``."""
     path = Path(path)
-    if path.resolve() in read.stack:
-        raise WorldFileError("a launch file includes itself", path=path, line=line,
-                             hint="remove the circular <include>")
-    if len(read.stack) >= MAX_INCLUDE_DEPTH:
-        raise WorldFileError("includes nest too deeply", path=path, line=line, hint="remove circular includes")
-    read.loaded += 1
-    if read.loaded > MAX_LAUNCH_FILES:
-        raise WorldFileError(f"more than {MAX_LAUNCH_FILES} launch files are read for this one (includes inside "
-                             "includes, each counted)", path=path, line=line,
-                             hint="include fewer files (see Limits in the README)")
+    count_include(read, path, line, "<include>")
     root = parse_launch_xml(path)
     if root.tag != "launch":
         raise WorldFileError(f"the root element is <{root.tag}>, not <launch>", path=path,
@@ -108,6 +99,23 @@ def load_launch(read: LaunchRead, path: Path, passed: Dict[str, ArgValue], ns: s
     if len(read.stack) == 0:
         read.info.args = {k: (None if isinstance(v, Unresolved) else _found_path(read, v, scope))
                           for k, v in scope.args.items()}
+
+
+def count_include(read, path: Path, line: int | None, element: str) -> None:
+    """One more launch file read for ``read`` (a launch file's read: its ``stack`` of files being read and the
+    count of files ``loaded``, XML or Python): WorldFileError for a file that includes itself, includes nested past
+    :data:`MAX_INCLUDE_DEPTH`, or more than :data:`MAX_LAUNCH_FILES` files read for one. ``element`` is what
+    includes a file there (``<include>``, ``IncludeLaunchDescription``)."""
+    if path.resolve() in read.stack:
+        raise WorldFileError("a launch file includes itself", path=path, line=line,
+                             hint=f"remove the circular {element}")
+    if len(read.stack) >= MAX_INCLUDE_DEPTH:
+        raise WorldFileError("includes nest too deeply", path=path, line=line, hint="remove circular includes")
+    read.loaded += 1
+    if read.loaded > MAX_LAUNCH_FILES:
+        raise WorldFileError(f"more than {MAX_LAUNCH_FILES} launch files are read for this one (includes inside "
+                             "includes, each counted)", path=path, line=line,
+                             hint="include fewer files (see Limits in the README)")
 
 
 def _found_path(read: LaunchRead, value: str, scope: Scope) -> str | None:
