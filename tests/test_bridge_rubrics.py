@@ -8,6 +8,7 @@ import math
 
 import pytest
 
+from conftest import REPO
 from worldgen.bridge.metrics import compute
 from worldgen.bridge.rubrics import judge
 
@@ -74,3 +75,25 @@ def test_wall_follow_share_and_distance():
     never = [[t, None, None, 1.5, 1.0] for t in range(0, 40)]
     assert verdict("wall-follow", {"odom": odom, "scans": never})[0] == [
         "the robot never came within 0.55 m of a wall"]
+
+
+@pytest.mark.parametrize("width, points", [
+    (0.1, None),    # the line_track loop with 10 cm tape: its bends' pieces are shorter than the tape is wide
+    (0.05, [[round(0.6 * math.cos(a * math.tau / 100), 4), round(0.6 * math.sin(a * math.tau / 100), 4)]
+            for a in range(100)]),   # a circle of 100 points, 3.8 cm apart
+])
+def test_the_tape_is_the_whole_loop_however_short_its_pieces(tmp_path, width, points):
+    import yaml
+
+    from worldgen.bridge.track import tape_track
+    from worldgen.bridge.world import load_world
+
+    spec = yaml.safe_load((REPO / "examples" / "line_track.yaml").read_text())
+    spec["lines"][0]["width"] = width
+    if points is not None:
+        spec["lines"][0]["points"] = points
+    path = tmp_path / "track.yaml"
+    path.write_text(yaml.safe_dump(spec))
+    track = tape_track(load_world(path).scene)
+    expected = 7.937 if points is None else 100 * 2 * 0.6 * math.sin(math.pi / 100)
+    assert track.loop and track.length == pytest.approx(expected, abs=0.01)

@@ -45,8 +45,42 @@ def test_rosparam_documents_and_later_values():
     with pytest.raises(ParamError, match="mapping"):
         rosparam_sets([1, 2], "/ns", None)
     params = {"/a/b": 1, "/a/c": 2, "/ab": 3}
-    set_value(params, "/a", {"d": 4})
-    assert params == {"/ab": 3, "/a": {"d": 4}}
+    set_value(params, "/a", {"d": 4, "b": 5})        # a mapping is unrolled into leaves: they merge, as on the master
+    assert params == {"/a/c": 2, "/ab": 3, "/a/d": 4, "/a/b": 5}
+    set_value(params, "/a", 7)                        # a plain value replaces the whole subtree
+    assert params == {"/ab": 3, "/a": 7}
+
+
+@pytest.mark.parametrize("text, expected", [
+    ("!radians pi/2", math.pi / 2), ("!degrees 90", math.pi / 2), ("!degrees deg(90)", math.pi / 2),
+    ("rad(pi/4)", math.pi / 4), ("deg(-180)", -math.pi), ("!radians -2*pi/3 + 1", 1 - 2 * math.pi / 3)])
+def test_angles_read_as_rosparam_reads_them(text, expected):
+    from worldgen.ros.launch_params import load_yaml
+
+    assert load_yaml(f"a: {text}")["a"] == pytest.approx(expected)
+
+
+@pytest.mark.parametrize("text, message", [
+    ('a: !radians __import__("os")', "is not an angle"),
+    ("d: " + "[" * 3000 + "]" * 3000, "nests more than 64 levels"),
+    ("a: &a [1,1,1,1,1,1,1,1,1,1]\n" + "".join(f"{b}: &{b} [{', '.join(['*' + a] * 10)}]\n"
+                                             for a, b in zip("abcde", "bcdef")), "more than 200,000 values"),
+])
+def test_a_hostile_rosparam_document_is_refused_quickly(text, message):
+    from worldgen.ros.launch_params import load_yaml
+
+    with pytest.raises(ParamError, match=message):
+        load_yaml(text)
+
+
+def test_what_the_master_cannot_hold_is_said():
+    import datetime
+
+    from worldgen.ros.launch_params import storable
+
+    assert "not a string" in storable({1: 0.5})
+    assert "date" in storable({"when": datetime.date(2001, 1, 1)})
+    assert storable({"ok": [1, 2.5, "x", True, {"deep": -3}]}) is None
 
 
 LAUNCH = """<launch>
@@ -120,6 +154,15 @@ def test_a_launch_files_parameters_remaps_and_env(launch):
     assert (helper.required, helper.respawn, again.required, again.respawn, driver.required) == \
         (True, False, False, True, False)
     assert not info.findings, info.findings
+
+
+def test_params_merge_and_file_text_is_substituted_as_roslaunch_does(tmp_path):
+    (tmp_path / "gains.yaml").write_text("gain: $(arg g)\n")
+    path = tmp_path / "merge.launch"
+    path.write_text('<launch>\n  <arg name="g" default="0.7"/>\n  <param name="pid/kp" value="0.8"/>\n'
+                    '  <rosparam>pid: {ki: 0.1}</rosparam>\n'
+                    '  <rosparam file="$(dirname)/gains.yaml" subst_value="true"/>\n</launch>\n')
+    assert read_launch(path, environ={}).params == {"/pid/kp": 0.8, "/pid/ki": 0.1, "/gain": 0.7}
 
 
 def test_roslaunchs_own_loader_finds_the_same_parameters(launch, tmp_path):

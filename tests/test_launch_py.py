@@ -477,3 +477,20 @@ def generate_launch_description():
     assert {f.message for f in info.findings} >= {
         "launch actions nest more than 32 deep (a LaunchDescription holding itself?); the deeper ones are not read",
         "spawn_entity.py -x: substitutions nested too deeply to read"}
+
+
+@pytest.mark.parametrize("body", [
+    "l = []\n    l.append(l)\n    l.append(l)\n    return LaunchDescription(l)",
+    "l = ['a']\n    l.append(l)\n    l.append(l)\n    return LaunchDescription([Node(package='p', executable='x', "
+    "arguments=[l])])",
+    "s = 'a' * 1000000\n    t = s.replace('a', s)\n    u = ''.join([s] * 1000000)\n"
+    "    v = '%(a)99999999s' % {'a': 'x'}\n    w = '{0:{1}}'.format('x', 999999999)\n    return LaunchDescription([])",
+])
+def test_hostile_launch_files_are_read_quickly_in_little_memory(tmp_path, body):
+    """Lists that hold themselves and strings that would grow to gigabytes: read at once, never built."""
+    path = tmp_path / "hostile.launch.py"
+    path.write_text("from launch import LaunchDescription\nfrom launch_ros.actions import Node\n\n"
+                    f"def generate_launch_description():\n    {body}\n")
+    start = time.perf_counter()
+    read_launch(path, environ={})
+    assert time.perf_counter() - start < 5

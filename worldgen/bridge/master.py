@@ -98,7 +98,12 @@ def _master_pid(uri: str) -> int | None:
 
 
 def set_param(uri: str, name: str, value) -> None:
-    code, message, _ = xmlrpc.client.ServerProxy(uri).setParam(CALLER, name, value)
+    """Set the parameter ``name`` on the master at ``uri``; InputError when it refuses it or cannot carry it."""
+    try:
+        code, message, _ = xmlrpc.client.ServerProxy(uri).setParam(CALLER, name, value)
+    except (TypeError, OverflowError, xmlrpc.client.Error, OSError) as err:
+        raise InputError(f"the ROS master at {uri} cannot hold the parameter {name}: {err}",
+                         hint="give it a plain value (a number, string, bool, or a list or mapping of them)") from None
     if code != 1:
         raise InputError(f"the ROS master at {uri} refused to set {name}: {message}")
 

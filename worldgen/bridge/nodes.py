@@ -121,6 +121,9 @@ def _index(search: Sequence[str | Path]):
 def _package_node(item: str, python: str, search: Sequence[str | Path], args: list[str],
                   name: str | None = None) -> NodeSpec:
     package, _, node_type = item.partition("/")
+    if not node_type or "/" in node_type or node_type in (".", ".."):
+        raise InputError(f"{item}: the node's type must be the name of an executable in package {package}",
+                         hint='write <node pkg="PKG" type="NAME.py">, as rosrun PKG NAME.py would find it')
     folder = _index(search).find(package)
     if folder is None:
         raise InputError(f"{item}: no such file, and no package named {package!r}",

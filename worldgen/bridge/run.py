@@ -118,6 +118,12 @@ def run_nodes(world: World, nodes: list[NodeSpec], options: RunOptions, base_env
                                          for r in trace["robots"]}
             outcome.metrics["graded_robot"] = trace.get("ns")
         outcome.findings += launch_findings(nodes, ended_by, outcome.metrics)
+        if ended_by is None and (trace.get("timing") or {}).get("interrupted"):
+            done = outcome.metrics.get("sim_time_s") or 0.0
+            outcome.findings.append(Finding(
+                "run", "error", f"the run was cut short at {done:.1f} of {options.duration:g} simulated seconds: "
+                                "the machine could not keep the pace in the time allowed",
+                fix="grade at a lower --rate, on a less loaded machine, or with fewer runs at once (-j)"))
         outcome.findings += node_findings(nodes, children, alive, outcome.metrics)
         return outcome
 

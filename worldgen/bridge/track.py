@@ -2,8 +2,8 @@
 the robot's camera looks at.
 
 The tape is the world's floor marking (:func:`worldgen.geometry.markings.floor_markings`) with the longest
-centre-line: each of its boxes longer than wide is a piece of tape along its long axis (discs only round the
-joints). A loop is a line whose two ends meet. The camera's floor point is where the middle of the bottom image row
+centre-line: each of its boxes is a piece of tape along its x axis, as the writer lays a strip along its segment
+(discs only round the joints). A loop is a line whose two ends meet. The camera's floor point is where the middle of the bottom image row
 meets the floor, straight ahead of the robot: the nearest floor a camera-steered robot can see, and so what a line
 follower keeps on the line (the robot's own centre cuts the corners of a bend).
 """
@@ -47,8 +47,8 @@ def tape_track(scene, where: str = "") -> Track:
     for marking in floor_markings(scene):
         pieces = []
         for shape in marking.shapes:
-            if shape.kind != "box" or shape.size is None or shape.size[0] <= shape.size[1]:
-                continue
+            if shape.kind != "box" or shape.size is None or shape.size[0] <= 0:
+                continue   # a strip runs along its box's x axis, however short (a bend's pieces are shorter than wide)
             axis = quat_matrix(*shape.orientation)[:, 0] * shape.size[0] / 2
             centre = np.asarray(shape.position)
             pieces.append(((centre - axis)[:2], (centre + axis)[:2]))

@@ -113,14 +113,22 @@ def walk(read: PyRead, items, scope: Scope) -> None:
                   "holding itself?); the deeper ones are not read", scope.path, None, "add each action once")
         return
     scope.nesting += 1
+    read.spend(1 + len(items), scope.path)
     try:
         for item in items:
             if isinstance(item, Unknown):
                 read.unresolved(item, "a launch action cannot be read", scope.path, item.line)
-            elif isinstance(item, Description):
-                walk(read, item.actions, scope)
-            elif isinstance(item, (list, tuple)):
-                walk(read, item, scope)
+            elif isinstance(item, (Description, list, tuple)):
+                inner = item.actions if isinstance(item, Description) else item
+                if id(inner) in read.open_lists:
+                    read.note("launch-static", "warning", "a list of launch actions holds itself; it is read once",
+                              scope.path, None, "add each action once")
+                    continue
+                read.open_lists.add(id(inner))
+                try:
+                    walk(read, inner, scope)
+                finally:
+                    read.open_lists.discard(id(inner))
             elif isinstance(item, Action) and _holds(read, item, scope):
                 ACTIONS.get(item.kind, _ignore)(read, item, scope)
     finally:
@@ -472,9 +480,12 @@ def _weighty_code(node, frame) -> Optional[str]:
     return None
 
 
-def _weighty_value(value, depth: int = 0) -> bool:
-    if depth > 8:
+def _weighty_value(value, depth: int = 0, seen: set | None = None) -> bool:
+    """Whether ``value`` holds a spawn, an include or code of its own (each container looked into once)."""
+    seen = set() if seen is None else seen
+    if depth > 8 or id(value) in seen:
         return False
+    seen.add(id(value))
     if isinstance(value, Unknown):
         return not value.skipped
     if isinstance(value, Action):
@@ -482,11 +493,11 @@ def _weighty_value(value, depth: int = 0) -> bool:
             return value.fields.get("executable") in ("spawn_entity.py", "create")
         if value.kind in ("include", "opaque", "process"):
             return True
-        return any(_weighty_value(v, depth + 1) for v in value.fields.values())
+        return any(_weighty_value(v, depth + 1, seen) for v in value.fields.values())
     if isinstance(value, Description):
-        return any(_weighty_value(v, depth + 1) for v in value.actions)
+        return any(_weighty_value(v, depth + 1, seen) for v in value.actions)
     if isinstance(value, (list, tuple)):
-        return any(_weighty_value(v, depth + 1) for v in value)
+        return any(_weighty_value(v, depth + 1, seen) for v in value)
     return False
 
 

@@ -12,13 +12,14 @@ from dataclasses import dataclass, field
 from pathlib import Path, PurePosixPath
 from typing import Dict, List, Mapping, Optional
 
+from ..core.errors import WorldFileError
 from ..core.findings import Finding
 from ..core.packages import PackageIndex
 from .launch_info import LaunchInfo
 from .launch_py_values import Config, Subst
 from .launch_walk import STOCK_PACKAGES
 from .pystdlib import env_value
-from .pyvalues import MAX_NESTING, Ctx, Located, Symbol, Unknown, first_unknown, shown
+from .pyvalues import MAX_NESTING, MAX_WORK, Ctx, Located, Symbol, Unknown, first_unknown, shown
 
 ROS2_STOCK = STOCK_PACKAGES | {"ros_gz_sim", "ros_gz_bridge", "ros_gz_image", "ros_ign_gazebo", "turtlebot3_bringup",
                                "robot_state_publisher"}
@@ -39,6 +40,17 @@ class PyRead:
     env_reads: Dict[str, tuple] = field(default_factory=dict)       # name → (value, file, line), first read
     skipped: Dict[tuple, list] = field(default_factory=dict)        # (file, kind) → [(line, what, reason)]
     top_args: Dict[str, object] = field(default_factory=dict)       # the top file's launch arguments
+    steps: int = 0                                                   # actions and parts walked (see spend)
+    open_lists: set = field(default_factory=set)                     # ids of the lists being walked or resolved
+
+    def spend(self, count: int, path: Path, line: int | None = None) -> None:
+        """Count ``count`` more items walked or resolved: WorldFileError past MAX_WORK (lists that hold
+        themselves, or share one list a million times over, would otherwise take forever)."""
+        self.steps += count
+        if self.steps > MAX_WORK:
+            raise WorldFileError(f"the launch file takes more work to read than worldgen does ({MAX_WORK:,} steps): "
+                                 "its actions or substitutions are lists inside lists many times over", path=path,
+                                 line=line, hint="build each action and list once; a launch file holds few")
 
     def note(self, check: str, severity: str, message: str, path: Path, line: int | None, fix: str | None = None):
         finding = Finding(check, severity, message, where=f"{path}:{line}" if line else str(path), fix=fix)
@@ -108,7 +120,14 @@ class Scope:
         if isinstance(value, (int, float, PurePosixPath)):
             return str(value)
         if isinstance(value, (list, tuple)):
-            parts = [self.resolve(v, line, depth + 1) for v in value]
+            if id(value) in self.read.open_lists:
+                return Unknown("a list that holds itself", line)
+            self.read.spend(1 + len(value), self.path, line)
+            self.read.open_lists.add(id(value))
+            try:
+                parts = [self.resolve(v, line, depth + 1) for v in value]
+            finally:
+                self.read.open_lists.discard(id(value))
             unknown = first_unknown(parts)
             joined = "".join(shown(p) for p in parts)
             if unknown is not None:

@@ -227,14 +227,14 @@ def read_rosparam(read: LaunchRead, el, scope: Scope) -> None:
         text = _file_text(read, el.get("file"), "<rosparam file>", scope, el.sourceline)
     else:
         text = el.text or ""
-        if (el.get("subst_value") or "").strip().lower() in ("true", "1"):
-            try:
-                text = expand(read.lookup, text, scope, find=True)
-            except Unresolved as err:
-                read.unresolved(err, "<rosparam subst_value>", scope, el.sourceline)
-                return
     if text is None:
         return
+    if (el.get("subst_value") or "").strip().lower() in ("true", "1"):   # the file's text too, as roslaunch does
+        try:
+            text = expand(read.lookup, text, scope, find=True)
+        except Unresolved as err:
+            read.unresolved(err, "<rosparam subst_value>", scope, el.sourceline)
+            return
     try:
         pairs = rosparam_sets(load_yaml(text), ns, full)
     except ParamError as err:
@@ -369,7 +369,12 @@ def read_spawn(read: LaunchRead, node: NodeRef, args: str, errors: List[Unresolv
                line: int | None) -> None:
     """Record a spawn_model node: its -x -y -z -Y pose (0 when not given, as spawn_model does), -model and
     -param. A pose number that cannot be resolved or read leaves the pose unknown, with a finding."""
-    words = shlex.split(args)
+    try:
+        words = shlex.split(args)
+    except ValueError:   # an unclosed quote: roslaunch's own split would stop there; the words as spaces give them
+        read.note("launch-spawn", "warning", f"spawn_model {node.full_name}: its args have an unclosed quote",
+                  scope, line, "close the quote in args=\"…\"")
+        words = args.split()
     pose: Optional[List[float]] = [0.0, 0.0, 0.0, 0.0]
     model_name = param = None
     for i, word in enumerate(words):

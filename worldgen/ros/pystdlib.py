@@ -19,7 +19,7 @@ from .pyvalues import MAX_NESTING, MAX_SIZE, Call, Ctx, Located, Symbol, Unknown
 
 PLAIN = (str, int, float, bool, type(None))
 WIDTH = re.compile(r"\d+")
-PERCENT = re.compile(r"%[-+ #0]*(\*|\d+)?(?:\.(\*|\d+))?[a-zA-Z%]")
+PERCENT = re.compile(r"%(?:\([^)]*\))?[-+ #0]*(\*|\d+)?(?:\.(\*|\d+))?[a-zA-Z%]")
 
 
 class EnvMap:
@@ -61,7 +61,8 @@ def plain(value, depth: int = 0) -> bool:
 
 
 def _safe_spec(spec: str) -> bool:
-    return all(int(w) <= 1000 for w in WIDTH.findall(spec))
+    """A format spec with no nested field (``{:{width}}``) and no width or precision past 1000."""
+    return "{" not in spec and all(int(w) <= 1000 for w in WIDTH.findall(spec))
 
 
 def format_value(value, spec, conversion, line):
@@ -253,9 +254,16 @@ def call_method(ctx: Ctx, base, name: str, call: Call):
             unknown = first_unknown(parts)
             if unknown is not None:
                 return unknown.like(base.join(shown(p) for p in parts))
-            return sized(base.join(parts), line) if all(isinstance(p, str) for p in parts) else \
-                Unknown("str.join() of something that is no string", line)
+            if not all(isinstance(p, str) for p in parts):
+                return Unknown("str.join() of something that is no string", line)
+            if sum(map(len, parts)) + len(base) * max(0, len(parts) - 1) > MAX_SIZE:   # measured before it is built
+                return Unknown(f"a value of over {MAX_SIZE} items is not built here", line)
+            return base.join(parts)
         if name in STR_METHODS and hasattr(str, name) and plain(call.args) and plain(call.kwargs):
+            if name == "replace" and len(call.args) >= 2 and all(isinstance(a, str) for a in call.args[:2]):
+                old, new = call.args[:2]
+                if len(base) + (base.count(old) if old else len(base) + 1) * (len(new) - len(old)) > MAX_SIZE:
+                    return Unknown(f"a value of over {MAX_SIZE} items is not built here", line)
             try:
                 return sized(getattr(str(base), name)(*call.args, **call.kwargs), line)
             except (TypeError, ValueError) as err:
