@@ -97,3 +97,22 @@ def test_the_tape_is_the_whole_loop_however_short_its_pieces(tmp_path, width, po
     track = tape_track(load_world(path).scene)
     expected = 7.937 if points is None else 100 * 2 * 0.6 * math.sin(math.pi / 100)
     assert track.loop and track.length == pytest.approx(expected, abs=0.01)
+
+
+def test_the_cameras_floor_point_follows_a_tilted_camera(tmp_path):
+    """The Waffle Pi's level camera meets the floor 0.30 m ahead; tilted 0.3 rad down (a robot description of a
+    student's own), its image's bottom edge meets it nearer, where the ray's geometry says."""
+    from worldgen.bridge.track import camera_floor_distance
+    from worldgen.robots import robot_urdf
+
+    level = camera_floor_distance("waffle_pi")
+    urdf = robot_urdf("waffle_pi")
+    joint = '<origin rpy="0 0 0" xyz="0.003 0.011 0.009"/>'
+    assert joint in urdf
+    tilted = tmp_path / "tilted.urdf"
+    tilted.write_text(urdf.replace(joint, '<origin rpy="0 0.3 0" xyz="0.003 0.011 0.009"/>'))
+    x, h = 0.073 + 0.003, 0.010 + 0.084 + 0.009            # the camera above base_footprint (base_link 0.010 up)
+    below = math.atan(math.tan(1.085595 / 2) * 480 / 640)   # half the vertical field of view
+    assert level == pytest.approx(x + h / math.tan(below), abs=0.005)
+    assert camera_floor_distance(str(tilted)) == pytest.approx(x + h / math.tan(below + 0.3), abs=0.005)
+    assert camera_floor_distance("burger") is None

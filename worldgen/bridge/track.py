@@ -70,7 +70,11 @@ def tape_track(scene, where: str = "") -> Track:
 
 def camera_floor_distance(robot: str) -> float | None:
     """How far ahead of the robot's base the middle of its first camera's bottom image row meets the floor (m),
-    or None when the robot has no camera looking down on the floor."""
+    or None when the robot has no camera looking down on the floor. The ray leaves the sensor's pose on its link
+    (tilted or not), along its +x with the image's lower edge half the vertical field of view below."""
+    import numpy as np
+
+    from ..core.poses import pose_matrix
     from ..robots import robot_urdf
     from ..robots.profile import link_frames, robot_profile
 
@@ -81,10 +85,15 @@ def camera_floor_distance(robot: str) -> float | None:
     frames = link_frames(profile.joints, profile.base_frame)
     if camera.link not in frames:
         return None
-    (x, _, z), _ = frames[camera.link]
-    x, z = x + camera.pose[0], z + camera.pose[2]
+    xyz, rotation = frames[camera.link]
+    link = np.eye(4)
+    link[:3, :3], link[:3, 3] = rotation, xyz
+    sensor = link @ pose_matrix(*camera.pose)
     below = math.tan(camera.hfov / 2) * camera.height / camera.width   # tan of half the vertical field of view
-    return x + z / below if z > 0 and below > 0 else None
+    origin, ray = sensor[:3, 3], sensor[:3, :3] @ np.array([1.0, 0.0, -below])
+    if origin[2] <= 0 or ray[2] >= 0:
+        return None   # the camera looks level or up: its image never meets the floor
+    return float(origin[0] - origin[2] / ray[2] * ray[0])
 
 
 def follow_numbers(track: Track, odom: list, lookahead: float, band: float) -> dict:
