@@ -8,7 +8,10 @@ import os
 import subprocess
 import sys
 import time
+import uuid
 from pathlib import Path
+
+import pytest
 
 from rosstubs import SYSTEM_PYTHON, free_port, need, need_module
 
@@ -85,3 +88,15 @@ def no_leftovers(env: dict[str, str] | str, wait: float = 5.0) -> None:
     while leftovers(env) and time.monotonic() < deadline:
         time.sleep(0.1)
     assert leftovers(env) == []
+
+
+@pytest.fixture
+def tag(monkeypatch, tmp_path) -> str:
+    """A marker in the environment every process of the run inherits, to find any left behind."""
+    need_ros()
+    value = uuid.uuid4().hex
+    monkeypatch.setenv("WORLDGEN_TEST_TAG", value)
+    monkeypatch.setenv("ROS_HOME", str(tmp_path / "ros_home"))
+    monkeypatch.delenv("ROS_MASTER_URI", raising=False)
+    yield f"WORLDGEN_TEST_TAG={value}"
+    no_leftovers(f"WORLDGEN_TEST_TAG={value}")

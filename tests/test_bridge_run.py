@@ -14,27 +14,14 @@ import subprocess
 import sys
 import time
 import os
-import uuid
 
 import pytest
 from conftest import CliRunner
 
 from rosstubs import SYSTEM_PYTHON
-from bridgetools import NODES, REPO, ROOM, leftovers, need_ros, no_leftovers
+from bridgetools import NODES, REPO, ROOM, leftovers, need_ros, no_leftovers, tag  # noqa: F401 (a fixture)
 from worldgen.cli import main
 from worldgen.ros.course import write_course
-
-
-@pytest.fixture
-def tag(monkeypatch, tmp_path) -> str:
-    """A marker in the environment every process of the run inherits, to find any left behind."""
-    need_ros()
-    value = uuid.uuid4().hex
-    monkeypatch.setenv("WORLDGEN_TEST_TAG", value)
-    monkeypatch.setenv("ROS_HOME", str(tmp_path / "ros_home"))
-    monkeypatch.delenv("ROS_MASTER_URI", raising=False)
-    yield f"WORLDGEN_TEST_TAG={value}"
-    no_leftovers(f"WORLDGEN_TEST_TAG={value}")
 
 
 @pytest.fixture(scope="module")

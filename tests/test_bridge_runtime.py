@@ -13,12 +13,12 @@ import json
 import math
 import subprocess
 import time
-import uuid
 
 import pytest
 
 from conftest import CliRunner
-from bridgetools import NODES, ROOM, leftovers, need_ros, no_leftovers, ros_env, worldgen
+from bridgetools import (NODES, ROOM, leftovers, need_ros, no_leftovers, ros_env, tag,  # noqa: F401 (tag: a fixture)
+                         worldgen)
 from rosstubs import SYSTEM_PYTHON, need_module
 from worldgen.cli import main
 from worldgen.ros.runtime import provider
@@ -34,18 +34,6 @@ def absent_module() -> str:
     if not absent:
         pytest.skip(f"{SYSTEM_PYTHON} has every one of {ABSENT_CANDIDATES}")
     return absent[0]
-
-
-@pytest.fixture
-def tag(monkeypatch, tmp_path) -> str:
-    """A marker in the environment every process of the run inherits, to find any left behind."""
-    need_ros()
-    value = uuid.uuid4().hex
-    monkeypatch.setenv("WORLDGEN_TEST_TAG", value)
-    monkeypatch.setenv("ROS_HOME", str(tmp_path / "ros_home"))
-    monkeypatch.delenv("ROS_MASTER_URI", raising=False)
-    yield f"WORLDGEN_TEST_TAG={value}"
-    no_leftovers(f"WORLDGEN_TEST_TAG={value}")
 
 
 def run(args: list[str]):
