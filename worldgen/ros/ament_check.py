@@ -24,6 +24,7 @@ from typing import Callable, List, Optional, Set, Tuple
 
 from ..core.errors import WorldFileError
 from ..core.packages import MANIFEST
+from .build_files import check_project, cmake_text, file_text
 from .pystatic import parse_python, read_module
 from .pyvalues import Call, Ctx, Unknown, first_unknown, not_run
 
@@ -220,7 +221,7 @@ def _setup_cfg(pkg_dir: Path, name: str, add: Add) -> None:
         return
     parser = configparser.ConfigParser(interpolation=None)
     try:
-        parser.read_string(_text(cfg))
+        parser.read_string(file_text(cfg))
     except configparser.Error as err:
         add("package-setup", "error", f"setup.cfg cannot be read: {' '.join(str(err).split())}", cfg, fix)
         return
@@ -237,13 +238,8 @@ def _check_cmake(pkg_dir: Path, name: str, add: Add) -> Optional[Set[str]]:
         add("package-cmake", "error", "no CMakeLists.txt: colcon cannot build an ament_cmake package without one",
             pkg_dir, "create it as 'ros2 pkg create --build-type ament_cmake NAME' does")
         return None
-    text = re.sub(r"#[^\n]*", "", _text(cmake))
-    project = re.search(r"\bproject\s*\(\s*([^\s)]+)", text, re.IGNORECASE)
-    if not project:
-        add("package-cmake", "error", "CMakeLists.txt has no project() call", cmake, f"add project({name})")
-    elif project.group(1) != name:
-        add("package-cmake", "error", f"project({project.group(1)}) does not match the package name {name}", cmake,
-            f"write project({name})")
+    text = cmake_text(cmake)
+    check_project(text, name, cmake, add, "package-cmake")
     if not re.search(r"\bfind_package\s*\(\s*ament_cmake\b", text, re.IGNORECASE):
         add("package-cmake", "error", "CMakeLists.txt never finds ament_cmake", cmake,
             "add find_package(ament_cmake REQUIRED)")
@@ -266,13 +262,3 @@ def _check_cmake(pkg_dir: Path, name: str, add: Add) -> Optional[Set[str]]:
         parts = match.group(1).split()
         programs.update(Path(p).name for p in parts[:parts.index("DESTINATION") if "DESTINATION" in parts else None])
     return programs
-
-
-def _text(path: Path) -> str:
-    from ..core.errors import WorldgenError
-    from ..core.inputs import read_capped
-
-    try:
-        return read_capped(path).decode("utf-8", "replace")
-    except (OSError, WorldgenError):
-        return ""

@@ -17,6 +17,7 @@ from typing import Mapping, Sequence
 from ..core.errors import WorldFileError
 from ..core.findings import Finding
 from .ament_check import check_ament
+from .build_files import check_project, cmake_text, file_text
 from .launch_reader import PYTHON_LAUNCH_SUFFIXES, read_launch
 from ..core.packages import build_type, manifest_name
 from ..spec.model import ROBOT_MODELS
@@ -59,7 +60,7 @@ def check_package(pkg_dir: str | Path, *, ros_package_path: Sequence[str | Path]
     name, depends = _read_manifest(manifest, add)
     kind = build_type(pkg_dir)
     executables: set[str] | None = None
-    if kind == "catkin" and re.search(r"<buildtool_depend>\s*ament_", _text(manifest)):
+    if kind == "catkin" and re.search(r"<buildtool_depend>\s*ament_", file_text(manifest)):
         add("package-xml", "warning", "package.xml depends on ament but declares no <build_type>: colcon builds "
             "it as a catkin package", manifest, "add <export><build_type>ament_cmake</build_type></export> (or "
             "ament_python)")
@@ -110,13 +111,8 @@ def _read_manifest(manifest: Path, add) -> tuple[str, set[str] | None]:
 
 
 def _check_cmake(cmake: Path, name: str, pkg_dir: Path, add) -> None:
-    text = re.sub(r"#[^\n]*", "", _text(cmake))
-    project = re.search(r"\bproject\s*\(\s*([^\s)]+)", text, re.IGNORECASE)
-    if not project:
-        add("cmake", "error", "CMakeLists.txt has no project() call", cmake, f"add project({name})")
-    elif project.group(1) != name:
-        add("cmake", "error", f"project({project.group(1)}) does not match the package name {name}", cmake,
-            f"write project({name})")
+    text = cmake_text(cmake)
+    check_project(text, name, cmake, add, "cmake")
     if not re.search(r"\bcatkin_(package|metapackage)\s*\(", text):
         add("cmake", "error", "CMakeLists.txt never calls catkin_package()", cmake, "add catkin_package()")
     installed = set()
@@ -165,7 +161,7 @@ def _check_launch(launch: Path, name: str, pkg_dir: Path, used: set[str], add, r
             elif not os.access(exe, os.X_OK):
                 add("launch-node", "error", f"node {node.full_name}: {exe} is not executable",
                     f"{launch}:{node.line}", f"chmod +x {exe}")
-    text = _text(launch)
+    text = file_text(launch)
     used.update(re.findall(r"\$\(find\s+([^)\s]+)\)", text))
     used.update(re.findall(r"\b(?:get_package_share_directory|FindPackageShare)\(\s*(?:package\s*=\s*)?"
                            r"['\"]([A-Za-z0-9_]+)['\"]", text))
@@ -178,14 +174,3 @@ def _head(path: Path) -> bytes:
             return handle.read(2)
     except OSError:
         return b""
-
-
-def _text(path: Path) -> str:
-    """A file's text (capped, never a pipe or device; empty when it cannot be read)."""
-    from ..core.errors import WorldgenError
-    from ..core.inputs import read_capped
-
-    try:
-        return read_capped(path).decode("utf-8", "replace")
-    except (OSError, WorldgenError):
-        return ""
