@@ -24,7 +24,7 @@ LAYERS = {
     "sdf": 3,
     "sim": 4, "ros": 4,   # ros: the files of ROS 1 and ROS 2 (launch files, packages; writers and readers)
     "check": 5,
-    "preview": 6, "bridge": 6,   # the live ROS 1 side of the simulator: on sim, ros and check, beside preview
+    "view": 6, "bridge": 6,   # bridge: the live ROS 1 side of the simulator; view: pictures and pages of worlds and runs
     "cli": 7,
     "": -1,         # worldgen/__init__.py: the version, importing nothing
     "__main__": 8,  # python -m worldgen
@@ -129,7 +129,7 @@ def test_every_part_is_in_a_layer():
 
 
 def test_root_reads_as_the_design_in_at_most_eleven_entries():
-    """The package's root is its parts, one entry each (ten folders and the preview), as the README draws them."""
+    """The package's root is its parts, one entry each (eleven folders), as the README draws them."""
     entries = [p.name for p in PACKAGE.iterdir() if not p.name.startswith("__") and p.name != "py.typed"]
     assert len(entries) <= 11 and set(entries) <= {f"{n}.py" for n in LAYERS} | set(LAYERS), sorted(entries)
 
@@ -195,11 +195,11 @@ def test_the_simulation_never_imports_ros():
         assert ros == [], module
 
 
-def test_the_bridge_and_the_preview_do_not_import_each_other():
+def test_the_bridge_and_the_view_do_not_import_each_other():
     g = graph()
     for module, imported in g.items():
-        if part(module) in ("bridge", "preview"):
-            other = {"bridge": "preview", "preview": "bridge"}[part(module)]
+        if part(module) in ("bridge", "view"):
+            other = {"bridge": "view", "view": "bridge"}[part(module)]
             assert not [m for m in imported if m.startswith("worldgen") and part(m) == other], module
 
 

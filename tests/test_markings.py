@@ -19,7 +19,7 @@ from worldgen.cli import main
 from worldgen.core.errors import SpecError
 from worldgen.geometry.building import build_geometry
 from worldgen.geometry.markings import floor_markings
-from worldgen.preview import figure, picture, render
+from worldgen.view.preview import figure, picture, render
 from worldgen.sdf.reader import read_world_text
 from worldgen.sdf.writer import world_sdf
 from worldgen.spec.load import parse_spec, starter_spec

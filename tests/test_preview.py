@@ -13,7 +13,7 @@ from matplotlib import colors
 from matplotlib.image import imread
 
 from worldgen.cli import main
-from worldgen.preview import (DOOR_COLOUR, OBSTACLE_COLOUR, ROBOT_COLOUR, WALL_COLOUR, WINDOW_COLOUR, Picture,
+from worldgen.view.preview import (DOOR_COLOUR, OBSTACLE_COLOUR, ROBOT_COLOUR, WALL_COLOUR, WINDOW_COLOUR, Picture,
                               Spawn, figure, picture, render)
 from worldgen.core.scene import Scene
 
@@ -181,7 +181,7 @@ def test_preview_spawn_and_robot_options(tmp_path):
 def test_lidar_rays_end_on_the_walls(tmp_path):
     """One simulated scan in the 5 m room: every beam hits, on the walls' inner faces (2.425 m from the centre)."""
     from conftest import EXAMPLES
-    from worldgen.preview import lidar_rays
+    from worldgen.view.preview import lidar_rays
 
     pic = picture(EXAMPLES / "enclosed_room.yaml")
     rays = lidar_rays(pic, pic.spawn)

@@ -28,7 +28,7 @@ def preview(source: Path, output: Path | None, spawn: str | None, robot: str | N
             model_paths: tuple[Path, ...], force: bool) -> None:
     """Draw SPEC (.yaml, .json, .txt grid) or WORLD (.world, .sdf) from above, to scale: what a TurtleBot3
     meets at its own height (walls, obstacles; doors and windows of a spec), and where it spawns."""
-    from ..preview import Spawn, picture, render
+    from ..view.preview import Spawn, picture, render
     from ..core.spawnpose import parse_spawn
 
     output = output or Path(f"{source.stem}.png")
@@ -44,7 +44,7 @@ def preview(source: Path, output: Path | None, spawn: str | None, robot: str | N
     if lidar:
         if pic.spawn is None:
             raise InputError("--lidar needs a spawn pose", hint="give --spawn X,Y[,YAW] or a robot: in the spec")
-        from ..preview import lidar_rays
+        from ..view.preview import lidar_rays
 
         rays = lidar_rays(pic, pic.spawn, model_paths)
     for finding in pic.scene.findings:

@@ -17,10 +17,10 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Sequence, Tuple
 
-from .spec.grid import POST_PREFIX
-from .core.scene import Scene
-from .spec.load import load_spec
-from .spec.model import SPEC_SUFFIXES, Spec
+from ..spec.grid import POST_PREFIX
+from ..core.scene import Scene
+from ..spec.load import load_spec
+from ..spec.model import SPEC_SUFFIXES, Spec
 
 FIGSIZE = (8.0, 8.0)   # inches
 DPI = 100              # so a picture is 800 × 800 pixels
@@ -74,9 +74,9 @@ def is_spec_path(path: str | Path) -> bool:
 
 def spec_picture(spec: Spec) -> Picture:
     """A spec's picture: its geometry written as SDF and read back, plus its openings and spawn pose."""
-    from .geometry.building import build_geometry
-    from .sdf.reader import read_world_text
-    from .sdf.writer import world_sdf
+    from ..geometry.building import build_geometry
+    from ..sdf.reader import read_world_text
+    from ..sdf.writer import world_sdf
 
     building = build_geometry(spec)
     text = world_sdf(building)
@@ -104,7 +104,7 @@ def opening_marks(building) -> tuple[Mark, ...]:
 
 def world_picture(path: str | Path, model_paths: Sequence[str | Path] = ()) -> Picture:
     """A world file's picture: static shapes drawn as walls, movable ones as obstacles."""
-    from .sdf.reader import read_world
+    from ..sdf.reader import read_world
 
     scene = read_world(path, model_paths=model_paths)
     walls = frozenset(s.label for s in scene.shapes if s.static)
@@ -135,7 +135,7 @@ def render(pic: Picture, rays: Sequence[Ray] | None = None) -> bytes:
     """Draw ``pic`` (and LiDAR ``rays``, if given) as PNG bytes, 800 × 800 px, the same bytes for the same input."""
     import io
 
-    from .core.mpl import matplotlib_agg
+    from ..core.mpl import matplotlib_agg
 
     matplotlib = matplotlib_agg()
     with matplotlib.rc_context(_default_style()):
@@ -147,15 +147,15 @@ def render(pic: Picture, rays: Sequence[Ray] | None = None) -> bytes:
 
 def figure(pic: Picture, rays: Sequence[Ray] | None = None):
     """The matplotlib Figure :func:`render` saves (its first axes are the plan, in metres)."""
-    from .core.mpl import matplotlib_agg
+    from ..core.mpl import matplotlib_agg
 
     matplotlib = matplotlib_agg()
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.collections import LineCollection
     from matplotlib.figure import Figure
 
-    from .geometry.slices import footprints_between
-    from .geometry.placement import ROBOT_RADIUS, SLICE_Z
+    from ..geometry.slices import footprints_between
+    from ..geometry.placement import ROBOT_RADIUS, SLICE_Z
 
     with matplotlib.rc_context(_default_style()):
         fig = Figure(figsize=FIGSIZE, dpi=DPI)
@@ -212,7 +212,7 @@ def _draw_markings(ax, scene: Scene, bounds: "_Bounds"):
     or None when there are none."""
     import shapely
 
-    from .geometry.markings import floor_markings, footprint
+    from ..geometry.markings import floor_markings, footprint
 
     found = sorted(floor_markings(scene), key=lambda m: m.top)
     for marking in found:
@@ -227,7 +227,7 @@ def _draw_markings(ax, scene: Scene, bounds: "_Bounds"):
 
 def _default_style() -> dict:
     """matplotlib's default settings, so that a user's matplotlibrc cannot change the picture."""
-    from .core.mpl import matplotlib_agg
+    from ..core.mpl import matplotlib_agg
 
     matplotlib = matplotlib_agg()
 
@@ -339,7 +339,7 @@ def lidar_rays(pic: Picture, spawn: Spawn, model_paths: Sequence[str | Path] = (
     """One noiseless LiDAR scan of the robot at ``spawn`` in ``pic``'s world, simulated in a child process
     (pybullet, see :mod:`worldgen.sim.process`): a ray per beam from the sensor to its hit, or to the sensor's
     range where it hits nothing."""
-    from .sim.process import run_isolated
+    from ..sim.process import run_isolated
 
     reply = run_isolated(f"{__name__}:scan_rays", {
         "world": pic.world_path, "world_text": pic.world_text, "model_paths": [str(p) for p in model_paths],
@@ -350,8 +350,8 @@ def lidar_rays(pic: Picture, spawn: Spawn, model_paths: Sequence[str | Path] = (
 def scan_rays(world: str | None, world_text: str | None, model_paths: list[str], robot: str,
               spawn: list[float]) -> dict:
     """The child-process side of :func:`lidar_rays` (JSON in, JSON out)."""
-    from .sdf.reader import read_world, read_world_text
-    from .sim.session import Session
+    from ..sdf.reader import read_world, read_world_text
+    from ..sim.session import Session
 
     scene = read_world_text(world_text, model_paths=tuple(model_paths)) if world_text is not None else \
         read_world(world, model_paths=tuple(model_paths))
