@@ -35,15 +35,15 @@ def robots_dir() -> Path:
 
 
 def render_template(template: str, **context) -> str:
-    """Render ``templates/TEMPLATE`` (Jinja2) with ``context``. XML templates (``*.xml.j2``, ``*.launch.j2``) escape
-    their values; undefined names are errors, so a template and its caller cannot drift apart silently."""
+    """Render ``templates/TEMPLATE`` (Jinja2) with ``context``. XML and HTML templates (``*.xml.j2``,
+    ``*.launch.j2``, ``*.html.j2``) escape their values; undefined names are errors, so a template and its caller cannot drift apart silently."""
     import jinja2
 
     env = _JINJA.get("env")
     if env is None:
         env = jinja2.Environment(
             loader=jinja2.FileSystemLoader(str(templates_dir())),
-            autoescape=jinja2.select_autoescape(enabled_extensions=("xml.j2", "launch.j2"),
+            autoescape=jinja2.select_autoescape(enabled_extensions=("xml.j2", "launch.j2", "html.j2"),
                                                 default_for_string=False),
             undefined=jinja2.StrictUndefined, keep_trailing_newline=True, trim_blocks=True, lstrip_blocks=True)
         _JINJA["env"] = env

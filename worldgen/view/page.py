@@ -1,0 +1,135 @@
+"""The self-contained 3D page: one HTML file holding three.js (vendored, see :mod:`.vendor`), the page's own script
+and the data it draws (:mod:`.scene_data`, and for a run :mod:`.replay`). Opening it loads nothing from anywhere:
+every script is inlined as text and linked through ``blob:`` URLs by a small loader (``templates/view/boot.js``).
+
+The same inputs give the same bytes: the data is JSON with sorted-free, rounded values written in a fixed order,
+and nothing in the page depends on the time or the machine it was written on.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+from pathlib import Path
+from typing import Sequence
+
+from ..core.findings import Finding
+
+LIBRARIES = ("three", "BufferGeometryUtils", "GLTFLoader", "OrbitControls")
+_CLOSERS = re.compile(r"</script|<!--", re.IGNORECASE)
+
+
+def _script_text(name: str, text: str) -> str:
+    """``text`` to inline in a ``<script>`` element, refused if it could end the element early."""
+    found = _CLOSERS.search(text)
+    if found:
+        from ..core.errors import WorldgenError
+
+        raise WorldgenError(f"{name} cannot be inlined in a page: it holds {found.group(0)!r}",
+                            hint="please report this to the worldgen developers")
+    return text
+
+
+def data_json(data: dict) -> str:
+    """``data`` as JSON that is safe inside a script element: every ``<``, ``>`` and ``&`` escaped."""
+    text = json.dumps(data, ensure_ascii=False, separators=(",", ":"), allow_nan=False)
+    return text.replace("<", "\\u003c").replace(">", "\\u003e").replace("&", "\\u0026")
+
+
+def _template_text(name: str) -> str:
+    from ..core.resources import templates_dir
+
+    return (templates_dir() / "view" / name).read_text(encoding="utf-8")
+
+
+def finding_items(findings: Sequence[Finding]) -> list[dict]:
+    """Findings as the page lists them, errors first."""
+    order = {"error": 0, "warning": 1, "info": 2}
+    ranked = sorted(enumerate(findings), key=lambda item: (order.get(item[1].severity, 3), item[0]))
+    out = []
+    for _, f in ranked:
+        where = f"{f.where}:{f.line}" if getattr(f, "where", None) and getattr(f, "line", None) else ""
+        message = f"{f.message} ({where})" if where else f.message
+        out.append({"severity": f.severity, "check": f.check, "message": message, "fix": f.fix or ""})
+    return out
+
+
+def render_page(data: dict, *, title: str, subtitle: str = "", findings: Sequence[Finding] = (),
+                verdict: str | None = None, verdict_text: str = "", metrics: Sequence[tuple[str, str]] = ()) -> bytes:
+    """The HTML page for ``data`` (a world's, with ``replay`` for a run), the findings and metrics beside it."""
+    from ..core.resources import render_template
+    from .vendor import THREE_VERSION, modules
+
+    from markupsafe import Markup
+
+    libraries = modules()
+    code = [(name, Markup(_script_text(name, libraries[name]))) for name in LIBRARIES]
+    replay = data.get("replay")
+    html = render_template(
+        "view/page.html.j2", title=title, subtitle=subtitle, css=Markup(_template_text("page.css")),
+        data_json=Markup(data_json(data)), libraries=code, app=Markup(_script_text("page.js", _template_text("page.js"))),
+        boot=Markup(_script_text("boot.js", _template_text("boot.js"))), three_version=THREE_VERSION,
+        three_license=Markup(_script_text("LICENSE", libraries["LICENSE"])), replay=replay is not None,
+        replay_duration=(replay["t"][-1] if replay and replay["t"] else 0), rays="rays" in data or replay is not None,
+        findings=finding_items(findings), verdict=verdict, verdict_text=verdict_text, metrics=list(metrics))
+    return html.encode("utf-8")
+
+
+def world_page(path: str | Path, *, spawn: tuple[float, float, float] | None = None, robot: str | None = None,
+               lidar: bool = False, model_paths: Sequence[str | Path] = ()) -> bytes:
+    """The page of a world file, a spec or a launch file: the world as Gazebo draws it, the robot at its spawn
+    pose (``spawn``/``robot`` override what the input says), LiDAR rays from there with ``lidar``."""
+    import dataclasses
+
+    from ..core.errors import InputError
+    from .scene_data import read_source, scan_rays, world_data
+
+    source = read_source(path, model_paths)
+    if spawn is not None:
+        source = dataclasses.replace(source, spawn=tuple(spawn))
+    if robot is not None:
+        source = dataclasses.replace(source, robot=robot)
+    rays = None
+    if lidar:
+        if source.spawn is None:
+            raise InputError("--lidar needs a spawn pose", hint="give --spawn X,Y[,YAW] or a robot: in the spec")
+        rays = scan_rays(source, model_paths)
+    data = world_data(source, rays)
+    return render_page(data, title=source.title, subtitle=source.subtitle, findings=_scene_findings(source.scene))
+
+
+def _scene_findings(scene) -> list[Finding]:
+    """What the world reader said, but its infos."""
+    return [f for f in scene.findings if f.severity != "info"]
+
+
+def world_source(path: str | Path, scene, spawn=None, robot: str = "burger"):
+    """The page's view of a world already read (by ``run`` or ``validate``): a spec's rooms and openings are
+    taken from the spec again (its building is cheap to rebuild), anything else from ``scene`` itself."""
+    import dataclasses
+
+    from ..check.validate import input_kind
+    from .scene_data import WorldSource, read_source
+
+    path = Path(path)
+    if path.is_file() and input_kind(path) == "spec":
+        source = read_source(path)
+    else:
+        walls = frozenset(s.model for s in scene.shapes if s.static)
+        title = f"world '{scene.world_name}'" if scene.world_name else path.name
+        source = WorldSource(scene, title, path.name, world_path=str(path), walls=walls)
+    return dataclasses.replace(source, spawn=tuple(spawn) if spawn is not None else source.spawn, robot=robot)
+
+
+def replay_page(source, replay: dict, *, title: str, subtitle: str = "", findings: Sequence[Finding] = (),
+                verdict: str | None = None, verdict_text: str = "", metrics: Sequence[tuple[str, str]] = ()) -> bytes:
+    """The page of a run: the world of ``source`` (:func:`world_source`), the robot replayed along ``replay``
+    (:mod:`.replay`), the verdict, metrics and findings beside it."""
+    from .scene_data import world_data
+
+    data = world_data(source)
+    data["replay"] = replay
+    data["robot"]["spawn"] = [replay["x"][0], replay["y"][0], replay["yaw"][0]] if replay["t"] else \
+        data["robot"]["spawn"]
+    return render_page(data, title=title, subtitle=subtitle, findings=findings, verdict=verdict,
+                       verdict_text=verdict_text, metrics=metrics)
