@@ -149,6 +149,14 @@ class WorldView {
     this.plan = new THREE.Group();
     this.plan.add(flat(data.plan.walls, WALL_CUT, data.plan.z[1] + 0.001));
     this.plan.add(flat(data.plan.obstacles, OBSTACLE_CUT, data.plan.z[1] + 0.001));
+    for (const o of data.openings) {   // the plan's openings: solid, as preview draws them
+      const mark = new THREE.Mesh(new THREE.PlaneGeometry(o.s[0], o.s[1]),
+        new THREE.MeshBasicMaterial({ color: o.type === 'door' ? DOOR : WINDOW }));
+      mark.position.set(o.p[0], o.p[1], data.plan.z[1] + 0.002);
+      mark.rotation.z = o.yaw;
+      this.plan.add(label(mark, o.n));
+      this.pickable.push(mark);
+    }
     this.plan.visible = false;
     this.scene.add(this.plan);
     for (const room of data.plan.rooms) {
@@ -168,7 +176,7 @@ class WorldView {
     this.scene.add(this.openings);
     this.robot = this.buildRobot();
     this.rays = new THREE.LineSegments(new THREE.BufferGeometry(),
-      new THREE.LineBasicMaterial({ vertexColors: true, transparent: true, opacity: 0.8 }));
+      new THREE.LineBasicMaterial({ vertexColors: true, transparent: true, opacity: 0.45 }));
     this.rays.frustumCulled = false;
     this.rays.visible = false;
     this.scene.add(this.rays);
@@ -257,6 +265,7 @@ class WorldView {
     this.top = top;
     for (const mat of this.cutMaterials) { mat.clippingPlanes = top ? this.cut : null; mat.needsUpdate = true; }
     if (this.plan) this.plan.visible = top;
+    if (this.openings) this.openings.visible = !top;
     if (this.grid) this.grid.visible = !top;
     this.camera = top ? this.ortho : this.perspective;
     this.controls.object = this.camera;
@@ -316,8 +325,9 @@ class WorldView {
       -((event.clientY - rect.top) / rect.height) * 2 + 1);
     const caster = new THREE.Raycaster();
     caster.setFromCamera(pointer, this.camera);
+    const shown = object => { for (let o = object; o; o = o.parent) if (!o.visible) return false; return true; };
     const hits = caster.intersectObjects(this.pickable, false)
-      .filter(h => !(this.top && h.point.z > data.plan.z[1] + 0.01 && h.object.material.clippingPlanes));
+      .filter(h => shown(h.object) && !(this.top && h.point.z > data.plan.z[1] + 0.01 && h.object.material.clippingPlanes));
     return hits.length ? hits[0].object.userData.label : null;
   }
 }

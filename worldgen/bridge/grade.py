@@ -52,9 +52,10 @@ def node_of(submission: Path, task: str | None, names: list[str]) -> Path:
 
 
 def grade_folder(folder: Path, world_path: Path | None, *, task, target, duration, rate, spawn, robot, no_hit, jobs,
-                 nodes=(), shard: tuple[int, int] | None = None, launch=None) -> list[Result]:
+                 nodes=(), shard: tuple[int, int] | None = None, launch=None, each=None) -> list[Result]:
     """One result per submission in ``folder`` (each run in its own master, ``jobs`` at once); with ``shard``
-    (K, N), only the K-th of N stable shares of the submissions (:func:`worldgen.check.discover.shard`)."""
+    (K, N), only the K-th of N stable shares of the submissions (:func:`worldgen.check.discover.shard`).
+    ``each(result, world, trace)`` is called for every run that ran, with every scan recorded (a replay page)."""
     from ..core.resources import examples_dir
     from .preflight import blocked_result, many_findings
     from .report import result_of, task_context
@@ -77,7 +78,8 @@ def grade_folder(folder: Path, world_path: Path | None, *, task, target, duratio
 
         found = take_shard(found, *shard, key=str)
     options = RunOptions(duration=parse_duration(duration, task), rate=rate, no_hit=no_hit, task=task, target=target,
-                         person=person_loop(world.spawn) if task == "person-follow" else None)
+                         person=person_loop(world.spawn) if task == "person-follow" else None,
+                         record_scans=each is not None)
     planned = {s: _plan(s, task, nodes, python) for s in found}
     missing = many_findings({str(s): p[1] for s, p in planned.items() if not isinstance(p, WorldgenError)}, python)
 
@@ -101,6 +103,8 @@ def grade_folder(folder: Path, world_path: Path | None, *, task, target, duratio
             return result
         result = result_of(str(submission), world, outcome, task, target)
         result.metrics["node"] = str(node.relative_to(submission))
+        if each is not None:
+            each(result, world, outcome.trace)
         return result
 
     pool = ThreadPoolExecutor(max_workers=max(1, jobs))

@@ -6,10 +6,12 @@ from pathlib import Path
 
 
 def run_single(world_path: Path, node_args, *, task, target, duration, rate, spawn, robot, no_hit, fmt, junit=None,
-               plot=None, csv_path=None, bag=None, force=False, robot_ns=None, launch=None):
+               plot=None, csv_path=None, bag=None, force=False, robot_ns=None, launch=None, html=None, html_page=None):
     """Check everything (exit-2 errors before anything starts; then every node's imports, a failed result
     without starting anything when some are missing: see :mod:`.preflight`), run, write the files; returns the
-    :class:`~worldgen.check.report.Result` and the report text."""
+    :class:`~worldgen.check.report.Result` and the report text. ``html``: the replay page's file, made by
+    ``html_page(result, world, trace)`` (the command line's, from :mod:`worldgen.view`; the bridge draws
+    nothing itself), with every scan recorded for it."""
     from ..core.fsio import check_free, write_files
     from .nodes import resolve_nodes
     from .preflight import node_findings
@@ -19,7 +21,7 @@ def run_single(world_path: Path, node_args, *, task, target, duration, rate, spa
     from .run import RunOptions, parse_duration, run_nodes
     from .world import graded_robot, load_world
 
-    check_free([p for p in (junit, plot, csv_path, bag) if p is not None], force)
+    check_free([p for p in (junit, plot, csv_path, bag, html) if p is not None], force)
     import_rospy()
     python = node_python()
     world = load_world(world_path, spawn=spawn, robot=robot, launch=launch)
@@ -33,7 +35,7 @@ def run_single(world_path: Path, node_args, *, task, target, duration, rate, spa
         return _blocked(world_path, world, missing, task, fmt, junit, [n.name for n in nodes])
     options = RunOptions(duration=parse_duration(duration, task), rate=rate, no_hit=no_hit, task=task,
                          target=target, bag=None, person=person_loop(world.spawn) if task == "person-follow" else None,
-                         robot_ns=robot_ns)
+                         robot_ns=robot_ns, record_scans=html is not None)
     bag_tmp = None
     if bag is not None:
         bag_tmp = Path(bag).with_name(f".{Path(bag).name}.part")
@@ -51,6 +53,8 @@ def run_single(world_path: Path, node_args, *, task, target, duration, rate, spa
         if junit is not None:
             from ..check.report import to_junit
             files[junit] = to_junit([result])
+        if html is not None:
+            files[html] = html_page(result, world, outcome.trace)
         if files:
             write_files(files, force=True)
         if bag_tmp is not None and bag_tmp.is_file():

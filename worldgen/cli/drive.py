@@ -67,10 +67,12 @@ class FiniteFloat(click.FloatRange):
               help="Write a figure: distance to the wall against time, one curve per gain set.")
 @click.option("--csv", "csv_path", type=click.Path(path_type=Path, dir_okay=False), default=None, metavar="FILE",
               help="Write the time series as CSV.")
-@click.option("--force", is_flag=True, help="Overwrite existing --plot/--csv files.")
+@click.option("--html", type=click.Path(path_type=Path, dir_okay=False), default=None, metavar="FILE.html",
+              help="Write a 3D page replaying the (first gain set's) run: robot, path, scans, plots.")
+@click.option("--force", is_flag=True, help="Overwrite existing --plot/--csv/--html files.")
 @click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True)
 def drive(world, behaviour, robot, spawn, target, kp, ki, kd, duration, max_speed, stop_band, omega, rate,
-          front_angle, tolerance, lidar_no_hit, model_paths, plot, csv_path, force, fmt):
+          front_angle, tolerance, lidar_no_hit, model_paths, plot, csv_path, html, force, fmt):
     """Run a sensory-motor exercise in WORLD (a .world/.sdf file or a floorplan spec) and report it. WORLD may
     also be a launch file, a package or any folder: each world a launch file starts is driven from its spawn.
 
@@ -93,17 +95,17 @@ def drive(world, behaviour, robot, spawn, target, kp, ki, kd, duration, max_spee
     for folder in model_paths:
         if not folder.is_dir():
             raise InputError("--model-path is not a folder", path=folder, hint="give a folder of Gazebo models")
-    outputs = [p for p in (plot, csv_path) if p is not None]
+    outputs = [p for p in (plot, csv_path, html) if p is not None]
     check_free(outputs, force)
     request = {
         "behaviour": behaviour, "robot": _robot_arg(robot), "spawn": list(parse_spawn(spawn)) if spawn is not None
         else None, "gains": gain_sets(kp, ki, kd), "target": target, "duration": duration, "max_speed": max_speed,
         "omega": omega, "rate": float(rate), "front_angle": front_angle, "no_hit": lidar_no_hit, "tolerance": tolerance,
-        "stop_band": stop_band}
+        "stop_band": stop_band, "record_scans": html is not None}
     if kind in ("folder", "package", "launch"):   # every world a launch file starts, with its spawn
         if outputs:
-            raise InputError("--plot and --csv take a single world", path=world,
-                             hint="give one world or spec file to plot, or leave out --plot/--csv")
+            raise InputError("--plot, --csv and --html take a single world", path=world,
+                             hint="give one world or spec file to plot, or leave out --plot/--csv/--html")
         sys.exit(drive_many(world, request, model_paths, fmt))
     try:
         result = drive_one(world, kind, request, model_paths, timeout=SIM_TIMEOUT)
@@ -118,6 +120,11 @@ def drive(world, behaviour, robot, spawn, target, kp, ki, kd, duration, max_spee
     if csv_path is not None:
         from ..sim.plot import series_csv
         files[csv_path] = series_csv(result)
+    if html is not None:
+        from ..view.page import drive_page
+        first = result["runs"][0]
+        files[html] = drive_page(world, result, model_paths,
+                                 [] if first["ok"] or result["behaviour"] == "spin" else _failures(first))
     if files:
         write_files(files, force=force)
     click.echo(json.dumps(_finite(_summary(result)), indent=2) if fmt == "json" else text_report(result))

@@ -46,9 +46,12 @@ from .drive import FiniteFloat
               help="A rosbag of /scan, /odom and /cmd_vel.")
 @click.option("--lidar-no-hit", type=click.Choice(["inf", "zero"]), default="inf", show_default=True,
               help="What a beam that hits nothing reads: inf as in Gazebo, 0 as the real LDS-01 driver.")
-@click.option("--force", is_flag=True, help="Overwrite existing --plot/--csv/--bag/--junit files.")
+@click.option("--html", type=click.Path(path_type=Path), default=None, metavar="FILE.html|DIR",
+              help="A 3D page replaying the run (robot, path, scans, cmd_vel and distance plots, findings). With a "
+                   "folder of submissions: a folder with an index page and one replay per submission.")
+@click.option("--force", is_flag=True, help="Overwrite existing --plot/--csv/--bag/--junit/--html files.")
 def run(world, nodes, task, target, duration, rate, spawn, launch_file, robot, robot_ns, folder_world, jobs, shard, fmt, junit, plot,
-        csv_path, bag, lidar_no_hit, force):
+        csv_path, bag, html, lidar_no_hit, force):
     """Run NODE... (a .py file, PKG/TYPE, or a .launch file's nodes; `name:=value` after a node is its argument)
     on the simulated TurtleBot3 in WORLD, with a private ROS master, and report what the robot did. With --task,
     grade it: exit 0 pass, 1 fail.
@@ -67,9 +70,23 @@ def run(world, nodes, task, target, duration, rate, spawn, launch_file, robot, r
     if world.is_dir() and not (world / "model.sdf").is_file() and not (world / "model.config").is_file():
         from ..bridge.grade import grade_folder
 
+        pages: dict = {}
+        each = None
+        if html is not None:
+            from ..view.grades import check_report_folder, run_page
+
+            check_report_folder(html)
+
+            def each(result, world_run, trace):
+                pages[result.path] = run_page(result, world_run, trace)
+
         results = grade_folder(world, folder_world, task=task, target=target, duration=duration, rate=pace,
                                spawn=spawn_pose, robot=robot, no_hit=lidar_no_hit, jobs=jobs, nodes=nodes,
-                               shard=shard_k_n, launch=launch_file)
+                               shard=shard_k_n, launch=launch_file, each=each)
+        if html is not None:
+            from ..view.grades import write_report
+
+            write_report(html, results, lambda r: pages.get(r.path), f"worldgen run {world.name}")
         _write_reports(results, fmt, junit)
         sys.exit(EXIT_OK if all(r.ok for r in results) else EXIT_FAILED)
     if shard_k_n is not None:
@@ -81,9 +98,16 @@ def run(world, nodes, task, target, duration, rate, spawn, launch_file, robot, r
 
     result, text = run_single(world, nodes, task=task, target=target, duration=duration, rate=pace,
                               spawn=spawn_pose, robot=robot, no_hit=lidar_no_hit, fmt=fmt, junit=junit, plot=plot,
-                              csv_path=csv_path, bag=bag, force=force, robot_ns=robot_ns, launch=launch_file)
+                              csv_path=csv_path, bag=bag, force=force, robot_ns=robot_ns, launch=launch_file,
+                              html=html, html_page=_replay_page if html is not None else None)
     click.echo(text, nl=False)
     sys.exit(EXIT_OK if result.ok else EXIT_FAILED)
+
+
+def _replay_page(result, world, trace) -> bytes:
+    from ..view.grades import run_page
+
+    return run_page(result, world, trace, title=Path(result.path).name)
 
 
 def _write_reports(results, fmt: str, junit: Path | None) -> None:

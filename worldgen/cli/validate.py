@@ -36,8 +36,11 @@ from ..core.errors import EXIT_FAILED, EXIT_OK
 @click.option("--sdformat", is_flag=True,
               help="Also libsdformat's own check of each world, where the library is installed (slow and "
                    "memory-hungry on big worlds).")
+@click.option("--html", type=click.Path(path_type=Path, file_okay=False), default=None, metavar="DIR",
+              help="Also write a folder of pages: index.html, a row per file (verdict, key numbers, findings), each "
+                   "linking to that file's 3D page. Replaces the report an earlier --html wrote there.")
 def validate(paths, robot, spawn, launch_file, model_paths, fmt, junit, jobs, lidar_no_hit, shard, skip_sim,
-             sdformat):
+             sdformat, html):
     """Check worlds for a TurtleBot3 class: the room is closed around the spawn point, the robot spawns clear
     and settles, the LiDAR sees walls, it can spin in place and stop 0.5 m before a wall.
 
@@ -61,6 +64,10 @@ def validate(paths, robot, spawn, launch_file, model_paths, fmt, junit, jobs, li
                       sdformat=sdformat)
     if junit is not None:
         _check_writable(junit)
+    if html is not None:
+        from ..view.grades import check_report_folder
+
+        check_report_folder(html)
     notes: list[str] = []
     planned = plan(paths, options, notes)
     for note in notes:
@@ -72,6 +79,11 @@ def validate(paths, robot, spawn, launch_file, model_paths, fmt, junit, jobs, li
         results = run_jobs(planned, options, jobs, progress=progress)
     if junit is not None:   # first: when it cannot be written, exit 2 leaves stdout empty
         write_file(junit, to_junit(results), force=True)
+    if html is not None:
+        from ..view.grades import validate_page, write_report
+
+        write_report(html, results, lambda r: validate_page(r, model_paths),
+                     "worldgen validate " + " ".join(str(p) for p in paths))
     click.echo(to_json(results) if fmt == "json" else to_text(results), nl=False)
     sys.exit(EXIT_OK if all(r.ok for r in results) else EXIT_FAILED)
 

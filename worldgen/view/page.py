@@ -30,6 +30,14 @@ def _script_text(name: str, text: str) -> str:
     return text
 
 
+def _csp_hash(script: str) -> str:
+    """The Content Security Policy source that lets exactly this inline script run (the page's loader)."""
+    import base64
+    import hashlib
+
+    return "sha256-" + base64.b64encode(hashlib.sha256(script.encode("utf-8")).digest()).decode("ascii")
+
+
 def data_json(data: dict) -> str:
     """``data`` as JSON that is safe inside a script element: every ``<``, ``>`` and ``&`` escaped."""
     text = json.dumps(data, ensure_ascii=False, separators=(",", ":"), allow_nan=False)
@@ -63,12 +71,13 @@ def render_page(data: dict, *, title: str, subtitle: str = "", findings: Sequenc
     from markupsafe import Markup
 
     libraries = modules()
+    boot = _script_text("boot.js", _template_text("boot.js"))
     code = [(name, Markup(_script_text(name, libraries[name]))) for name in LIBRARIES]
     replay = data.get("replay")
     html = render_template(
         "view/page.html.j2", title=title, subtitle=subtitle, css=Markup(_template_text("page.css")),
         data_json=Markup(data_json(data)), libraries=code, app=Markup(_script_text("page.js", _template_text("page.js"))),
-        boot=Markup(_script_text("boot.js", _template_text("boot.js"))), three_version=THREE_VERSION,
+        boot=Markup(boot), boot_hash=_csp_hash(f"\n{boot}\n"), three_version=THREE_VERSION,
         three_license=Markup(_script_text("LICENSE", libraries["LICENSE"])), replay=replay is not None,
         replay_duration=(replay["t"][-1] if replay and replay["t"] else 0), rays="rays" in data or replay is not None,
         findings=finding_items(findings), verdict=verdict, verdict_text=verdict_text, metrics=list(metrics))
@@ -133,3 +142,31 @@ def replay_page(source, replay: dict, *, title: str, subtitle: str = "", finding
         data["robot"]["spawn"]
     return render_page(data, title=title, subtitle=subtitle, findings=findings, verdict=verdict,
                        verdict_text=verdict_text, metrics=metrics)
+
+
+def drive_page(world: str | Path, result: dict, model_paths: Sequence[str | Path] = (),
+               failures: Sequence[str] = ()) -> bytes:
+    """The page of ``worldgen drive``'s first run (:func:`worldgen.sim.exercise.drive_exercise`'s result, with
+    its scans recorded): the world, the robot replayed, the numbers the text report gives and why it failed."""
+    import dataclasses
+
+    from .replay import drive_replay
+    from .scene_data import read_source
+
+    source = dataclasses.replace(read_source(world, model_paths), spawn=tuple(result["spawn"]), robot=result["robot"])
+    run = result["runs"][0]
+    if result["behaviour"] == "spin":
+        metrics = [("turned", f"{run['turned'] * 57.29578:.0f}°"), ("drift at the end", f"{run['drift'] * 1000:.1f} mm"),
+                   ("largest drift", f"{run['max_drift'] * 1000:.1f} mm")]
+    else:
+        metrics = [(label, "–" if run.get(key) is None else f"{run[key]:.3f} {unit}".strip())
+                   for key, label, unit in (("final_distance", "final distance", "m"),
+                                            ("steady_state_error", "error", "m"), ("min_distance", "closest", "m"),
+                                            ("overshoot", "overshoot", "m"), ("settling_time", "settling time", "s"))]
+        metrics.insert(0, ("gains", f"kp={run['kp']:g} ki={run['ki']:g} kd={run['kd']:g}"))
+    metrics.append(("contacts", str(len(run["contacts"]))))
+    verdict = "ok" if run["ok"] else "FAIL"
+    findings = [Finding("drive", "error", text) for text in failures]
+    return replay_page(source, drive_replay(result), title=f"{result['behaviour']} in {source.title}",
+                       subtitle=source.subtitle, findings=findings, verdict=verdict,
+                       verdict_text=f"{result['behaviour']}: {'pass' if run['ok'] else 'fail'}", metrics=metrics)

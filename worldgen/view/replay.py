@@ -108,7 +108,7 @@ def drive_replay(result: dict, run: int = 0) -> dict:
            "v": [_r(command[i]) for i in keep], "w": [_r(omega) for _ in keep], "d": [_r(front[i]) for i in keep]}
     odom = [[times[i], series["x"][i], series["y"][i]] for i in range(len(times))]
     out["contacts"] = contacts(chosen.get("contacts") or [], odom)
-    rows = [[times[i], *row[:3], row[3]] for i, row in enumerate(series.get("scan") or [])]
+    rows = [[times[i], *row[:3], row[3]] for i, row in enumerate(series.get("scan") or []) if row is not None]
     scan = scans_data(result.get("lidar"), rows)
     if scan is not None:
         out["scans"] = scan

@@ -1,0 +1,112 @@
+"""A class's grades as a folder of pages (``validate|run FOLDER --html DIR``): ``index.html`` (:mod:`.index`), a row
+per submission, linking to ``pages/NAME.html``, each submission's own 3D page — its world with the findings
+(``validate``), or its run replayed (``run``).
+
+The folder is written all or nothing (:func:`worldgen.core.fsio.write_tree`). Like ``--junit``, it replaces the
+report a previous run wrote there, and nothing else: a folder that is not empty and holds no worldgen index is
+refused.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+from typing import Callable, Sequence
+
+from ..check.report import Result
+
+INDEX = "index.html"
+PAGES = "pages"
+GENERATOR = '<meta name="generator" content="worldgen">'
+
+
+def page_names(names: Sequence[str]) -> list[str]:
+    """A file name under ``pages/`` for each name, readable and unique (``a/b c.yaml`` → ``a_b_c.yaml.html``)."""
+    out, taken = [], set()
+    for name in names:
+        stem = re.sub(r"[^A-Za-z0-9._-]+", "_", name).strip("._") or "submission"
+        stem = stem[-100:]
+        candidate, n = stem, 2
+        while candidate.lower() in taken:
+            candidate, n = f"{stem}_{n}", n + 1
+        taken.add(candidate.lower())
+        out.append(f"{PAGES}/{candidate}.html")
+    return out
+
+
+def panel(result: Result) -> dict:
+    """What a submission's page shows beside the world: its verdict, metrics (the index's) and findings."""
+    from .index import index_rows
+
+    row = index_rows([result])[0]
+    text = {"ok": "pass", "warn": "pass, with warnings", "FAIL": "fail"}[result.verdict]
+    graded = row["task"] or ("run" if row["kind"] == "run" else "validate")
+    return {"verdict": result.verdict, "verdict_text": f"{graded}: {text}",
+            "metrics": [(m["label"], m["text"]) for m in row["metrics"]], "findings": result.sorted_findings()}
+
+
+def check_report_folder(folder: Path) -> None:
+    """Refuse (InputError) a ``--html`` folder that holds something other than a worldgen report."""
+    from ..core.errors import InputError
+
+    if not folder.exists():
+        return
+    if not folder.is_dir():
+        raise InputError(f"cannot write the report folder {folder}: it is a file", hint="give --html a folder name")
+    index = folder / INDEX
+    ours = index.is_file() and GENERATOR in index.read_text(encoding="utf-8", errors="replace")[:4000]
+    if any(folder.iterdir()) and not ours:
+        raise InputError(f"{folder} is not empty and holds no worldgen report",
+                         hint="give --html a new folder, or one an earlier --html wrote")
+
+
+def write_report(folder: Path, results: list[Result], page_of: Callable[[Result], bytes | None], title: str) -> Path:
+    """The index and every page ``page_of`` gives (None: a row without a page), written as ``folder``."""
+    from ..core.fsio import write_tree
+    from .index import index_page, index_rows
+
+    files: dict[str, bytes] = {}
+    hrefs: dict[str, str] = {}
+    for result, name in zip(results, page_names([r.name for r in results])):
+        page = page_of(result)
+        if page is not None:
+            files[name] = page
+            hrefs[result.name] = name
+    summary = f"{sum(r.ok for r in results)} of {len(results)} pass"
+    files[INDEX] = index_page(index_rows(results, hrefs), title, summary)
+    return write_tree(folder, files, force=True)
+
+
+def validate_page(result: Result, model_paths=()) -> bytes | None:
+    """A validated file's page: its world (a world file, a spec, or the world a launch file starts) from the spawn
+    pose checked, with the findings; None for a row with no world to draw (a package's own check, a file that
+    could not be read)."""
+    import dataclasses
+
+    from ..core.errors import WorldgenError
+    from .page import render_page
+    from .scene_data import read_source, world_data
+
+    path = Path(result.path)
+    if not path.is_file():
+        return None
+    try:
+        source = read_source(path, model_paths)
+    except WorldgenError:
+        return None
+    source = dataclasses.replace(source, spawn=result.spawn or source.spawn,
+                                 robot=result.robot if result.robot in ("burger", "waffle", "waffle_pi") else source.robot)
+    side = panel(result)
+    return render_page(world_data(source), title=result.name, subtitle=source.subtitle, **side)
+
+
+def run_page(result: Result, world, trace: dict, title: str | None = None) -> bytes:
+    """A graded run's page: the world it ran in (``world``: :class:`worldgen.bridge.world.World`, or anything with
+    its ``path``, ``scene``, ``spawn`` and ``robot``), the robot replayed along its trace, the verdict and
+    findings."""
+    from .page import replay_page, world_source
+    from .replay import run_replay
+
+    source = world_source(world.path, world.scene, world.spawn, world.robot)
+    return replay_page(source, run_replay(trace), title=title or result.name,
+                       subtitle=f"in {Path(str(world.path)).name}", **panel(result))
