@@ -1,7 +1,9 @@
-"""The installed wheel carries the templates and the TurtleBot3 descriptions, not only the checkout."""
+"""The installed wheel carries the templates, the TurtleBot3 descriptions and the vendored three.js (gitignored,
+fetched by the build hook), not only the checkout."""
 
 from __future__ import annotations
 
+import json
 import os
 import subprocess
 import sys
@@ -55,3 +57,28 @@ def test_course_and_robot_work_from_the_wheel(unpacked_wheel, tmp_path):
     assert (next(src.rglob("stop_at_wall.py"))).stat().st_mode & 0o111
     assert next(src.rglob("turtlebot3_in_enclosed_room.launch")).is_file()
     assert next(src.rglob("*.world")).is_file()
+
+
+def test_wheel_holds_three_js_and_its_license_not_the_build_hook(unpacked_wheel):
+    three = unpacked_wheel / "worldgen" / "view" / "three"
+    names = sorted(p.name for p in three.iterdir())
+    assert names == sorted(["three.module.min.js", "OrbitControls.js", "GLTFLoader.js", "BufferGeometryUtils.js",
+                            "LICENSE", "VERSION"]), names
+    assert "MIT License" in (three / "LICENSE").read_text(encoding="utf-8")
+    assert (three / "VERSION").read_text(encoding="utf-8").startswith("0.170.0\n")
+    assert not (unpacked_wheel / "worldgen" / "view" / "build_hook.py").exists()
+
+
+def test_three_js_modules_load_from_the_wheel(unpacked_wheel, tmp_path):
+    code = (
+        "import json, worldgen\n"
+        f"assert worldgen.__file__.startswith({str(unpacked_wheel)!r}), worldgen.__file__\n"
+        "from worldgen.view import vendor\n"
+        "assert vendor.is_vendored()\n"
+        "print(json.dumps({k: len(v) for k, v in vendor.modules().items()}))\n"
+    )
+    proc = _run_from_wheel(unpacked_wheel, code, tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    sizes = json.loads(proc.stdout)
+    assert sorted(sizes) == ["BufferGeometryUtils", "GLTFLoader", "LICENSE", "OrbitControls", "three"]
+    assert sizes["three"] > 500_000 and all(n > 0 for n in sizes.values())

@@ -88,7 +88,8 @@ class Bridge:
             if i == 0 and entry.get("name"):
                 robot.name = entry["name"]
             self.robots.append(RobotTopics(rospy, self.msg, robot, entry.get("ns", "/"), self.tf_prefix(entry),
-                                           self.bag if i == 0 else None, self.lock))
+                                           self.bag if i == 0 else None, self.lock,
+                                           record_scans=bool(config.get("record_scans"))))
             self.add_cameras(self.robots[-1])
         self.graded = self._graded(config.get("graded"))
         from .gazebo_api import GazeboApi
@@ -126,7 +127,8 @@ class Bridge:
 
     def add_robot(self, name: str, *, urdf: str, spawn, ns: str, z: float = 0.0) -> RobotTopics:
         robot = self.session.add_robot("burger", spawn, name=name, urdf=urdf, z=z)
-        topics = RobotTopics(self.rospy, self.msg, robot, ns, self.tf_prefix({"ns": ns}), None, self.lock)
+        topics = RobotTopics(self.rospy, self.msg, robot, ns, self.tf_prefix({"ns": ns}), None, self.lock,
+                             record_scans=bool(self.config.get("record_scans")))
         topics.now = self.session.t
         self.add_cameras(topics, strict=False)
         self.robots.append(topics)
@@ -316,7 +318,8 @@ def main(argv: list[str]) -> int:
     per robot: name, ns, robot, spawn, tf_prefix, mappings; the first is robot/spawn's), graded (the namespace or
     name of the robot the trace is about), no_hit, rate (0 = max), duration (s or null), trace (file or null), bag
     (file or null), start_param (null: start at once), person (null or the loop), set_sim_time (bool),
-    gazebo_msgs (a folder to import gazebo_msgs from, or null)."""
+    gazebo_msgs (a folder to import gazebo_msgs from, or null), record_scans (bool: every robot's trace gets
+    ``lidar`` and every published scan under ``ranges``, see :meth:`.RobotTopics.publish_scan`)."""
     from ..core.errors import WorldgenError
     from ..core.scene import Scene
     from .rosenv import import_rospy

@@ -64,7 +64,8 @@ def frame(prefix: str, name: str) -> str:
 class RobotTopics:
     """The publishers, the ``cmd_vel`` subscriber and the trace of one robot (see the module docstring)."""
 
-    def __init__(self, rospy, msgs: dict, robot, ns: str = "/", tf_prefix: str = "", bag=None, lock=None):
+    def __init__(self, rospy, msgs: dict, robot, ns: str = "/", tf_prefix: str = "", bag=None, lock=None,
+                 record_scans: bool = False):
         from geometry_msgs.msg import Twist
 
         self.rospy, self.msg, self.robot, self.ns, self.prefix = rospy, msgs, robot, ns, tf_prefix
@@ -84,6 +85,11 @@ class RobotTopics:
                              if j.name in (profile.drive.left_joint, profile.drive.right_joint)}
         self.imu_link = "imu_link" if "imu_link" in robot.link_index else self.base
         self.trace = {"odom": [], "scans": [], "cmd": []}
+        self.record_scans = record_scans and robot.lidar is not None
+        if self.record_scans:   # every published scan, for a replay (see publish_scan)
+            from ..sim.lidar import lidar_info
+
+            self.trace.update(lidar=lidar_info(robot.lidar), ranges=[])
         self.last_velocity = None
         self.now = 0.0
         self.cameras: list = []   # its CameraTopics (:mod:`.camera_topics`), which the node adds
@@ -197,8 +203,10 @@ class RobotTopics:
         self.pubs["imu"].publish(imu)
 
     def publish_scan(self, session, stamp) -> bool:
-        """One scan (and a trace line); True when some node listens to it."""
-        from ..sim.lidar import front_distance
+        """One scan (and a trace line); True when some node listens to it. Recording scans, the trace's
+        ``ranges`` also gets ``[t, ox, oy, yaw, [mm, …]]``, the ranges as published
+        (:func:`worldgen.sim.lidar.scan_row`)."""
+        from ..sim.lidar import front_distance, scan_row
 
         r = self.robot
         scan = session.scan_of(r)
@@ -216,6 +224,8 @@ class RobotTopics:
         front = front_distance(scan, true=True)
         self.trace["scans"].append([session.t, scan.true_ranges[0] if math.isfinite(scan.true_ranges[0]) else None,
                                     front, min(true) if true else None, session.clearance_of(r)])
+        if self.record_scans:
+            self.trace["ranges"].append([round(session.t, 3), *scan_row(scan)])
         return listened
 
     def result(self) -> dict:

@@ -44,6 +44,7 @@ class RunOptions:
     bag: Path | None = None
     person: dict | None = None
     robot_ns: str | None = None      # the robot graded, of several (its namespace or model name)
+    record_scans: bool = False       # each robot's trace keeps every published scan (for a replay)
 
 
 @dataclass
@@ -93,7 +94,7 @@ def run_nodes(world: World, nodes: list[NodeSpec], options: RunOptions, base_env
         config = write_config(tmp, world, rate=options.rate, duration=options.duration, no_hit=options.no_hit,
                               trace=str(trace_file), bag=str(options.bag) if options.bag else None,
                               start_param=START_PARAM, person=options.person, set_sim_time=False,
-                              graded=options.robot_ns)
+                              graded=options.robot_ns, record_scans=options.record_scans)
         simulator = supervisor.start("simulator", [sys.executable, "-m", "worldgen.bridge.node", str(config)],
                                      _bridge_env(env), log=tmp / "simulator.log")
         _wait_for_simulator(simulator, uri)

@@ -9,11 +9,12 @@ import math
 from dataclasses import dataclass, field
 
 from ..core import stoplaw
-from .lidar import front_distance
+from .lidar import front_distance, scan_row
 from .session import Session
 
 UPRIGHT_TILT = math.radians(10)   # roll or pitch beyond this: the robot fell over or is stuck on something
 STOPPED_SPEED = 0.02              # m/s: slower than this through the last second counts as stopped
+SCAN_RECORD_RATE = 5.0            # Hz: at most this many scans a simulated second recorded for a replay
 
 
 @dataclass
@@ -50,7 +51,7 @@ class SpinResult:
     max_drift: float
     drift_limit: float   # the most max_drift may be for the run to count as spinning in place
     contacts: list[dict]
-    series: dict[str, list[float]] = field(default_factory=dict)   # t, x, y, yaw, drift
+    series: dict[str, list] = field(default_factory=dict)   # t, x, y, yaw, drift (and scan: see spin)
 
     @property
     def ok(self) -> bool:
@@ -61,12 +62,16 @@ class SpinResult:
 
 
 def spin(session: Session, seconds: float = 2 * math.pi, omega: float = 1.0, sample_rate: float = 30.0,
-         drift_limit: float = 0.05) -> SpinResult:
+         drift_limit: float = 0.05, record_scans: bool = False) -> SpinResult:
     """Turn in place at ``omega`` rad/s for ``seconds``, then command a stop and let it come to rest
-    (0.5 s). A diff-drive robot turns about the midpoint of its wheels, so the base frame should stay put."""
+    (0.5 s). A diff-drive robot turns about the midpoint of its wheels, so the base frame should stay put.
+    ``record_scans`` (and a LiDAR): the series also has ``scan``, as :func:`stop_at_wall`'s."""
     start = session.odometry()
     session.start_exercise()
-    series: dict[str, list[float]] = {"t": [], "x": [], "y": [], "yaw": [], "drift": []}
+    series: dict[str, list] = {"t": [], "x": [], "y": [], "yaw": [], "drift": []}
+    every = _scan_every(sample_rate) if record_scans and session.lidar is not None else 0
+    if every:
+        series["scan"] = []
     turned, last_yaw, max_drift = 0.0, start.yaw, 0.0
     session.cmd_vel(0.0, omega)
     period = 1.0 / sample_rate
@@ -82,6 +87,8 @@ def spin(session: Session, seconds: float = 2 * math.pi, omega: float = 1.0, sam
         max_drift = max(max_drift, drift)
         for key, value in (("t", o.t - start.t), ("x", o.x), ("y", o.y), ("yaw", o.yaw), ("drift", drift)):
             series[key].append(value)
+        if every:
+            series["scan"].append(scan_row(session.scan()) if i % every == 0 else None)
     return SpinResult(omega=omega, seconds=seconds, turned=turned, drift=series["drift"][-1], max_drift=max_drift,
                       drift_limit=drift_limit, contacts=session.touches.to_list(), series=series)
 
@@ -107,7 +114,7 @@ class StopAtWallResult:
     within_tolerance: bool            # |final − target| ≤ tolerance
     tolerance: float
     contacts: list[dict]
-    series: dict[str, list] = field(default_factory=dict)   # t, measured, true, v_cmd, v
+    series: dict[str, list] = field(default_factory=dict)   # t, measured, true, v_cmd, v, x, y, yaw (, scan)
 
     @property
     def ok(self) -> bool:
@@ -120,20 +127,30 @@ class StopAtWallResult:
 def stop_at_wall(session: Session, target: float = stoplaw.TARGET, kp: float = stoplaw.KP, ki: float = 0.0,
                  kd: float = 0.0, duration: float = 15.0, max_speed: float = stoplaw.MAX_SPEED, rate: float = 5.0,
                  half_angle: float = math.radians(stoplaw.FRONT_ANGLE), band: float = 0.02,
-                 tolerance: float = 0.05, stop_band: float = stoplaw.STOP_BAND) -> StopAtWallResult:
+                 tolerance: float = 0.05, stop_band: float = stoplaw.STOP_BAND, record_scans: bool = False
+                 ) -> StopAtWallResult:
     """Drive toward whatever is ahead and stop ``target`` m from it, exactly as the generated ``stop_at_wall.py``
     node does (:class:`worldgen.core.stoplaw.StopLaw`): at ``rate`` Hz (the LiDAR's 5 Hz, or 30) read the front
     distance (nearest beam within ±``half_angle``; None when nothing is seen there) and command
     ``v = clamp(kp·e + ki·∫e dt + kd·de/dt, 0, max_speed)`` with ``e = front − target``; nothing seen: full
     speed; once within ``stop_band`` of the target: stop and hold, so LiDAR noise cannot start it again. It never
     reverses. ``band`` is the settling-time band around the final distance, ``tolerance`` how close to the
-    target the run must end."""
+    target the run must end.
+
+    The series has one sample per control step and one for the state at the end: ``t`` (s from the start),
+    ``measured`` and ``true`` front distances, ``v_cmd``, ``v``, and the base frame's world ``x``, ``y``, ``yaw``.
+    ``record_scans`` adds ``scan``: the scan the controller saw, as :func:`~worldgen.sim.lidar.scan_row`, at
+    most :data:`SCAN_RECORD_RATE` a second (None at the samples between) and always at the end."""
     if session.lidar is None:
         session.scan()   # raises the "no LiDAR" error
     period = 1.0 / rate
     start_t = session.t
     session.start_exercise()
-    series: dict[str, list] = {"t": [], "measured": [], "true": [], "v_cmd": [], "v": []}
+    series: dict[str, list] = {"t": [], "measured": [], "true": [], "v_cmd": [], "v": [], "x": [], "y": [],
+                               "yaw": []}
+    every = _scan_every(rate) if record_scans else 0
+    if every:
+        series["scan"] = []
     law = stoplaw.StopLaw(target=target, kp=kp, ki=ki, kd=kd, max_speed=max_speed, stop_band=stop_band)
     stop_time = None
     for step in range(max(1, round(duration / period))):
@@ -148,15 +165,21 @@ def stop_at_wall(session: Session, target: float = stoplaw.TARGET, kp: float = s
             stop_time = None
         odom = session.odometry()
         for key, value in (("t", session.t - start_t), ("measured", measured), ("true", true), ("v_cmd", v_cmd),
-                           ("v", odom.v)):
+                           ("v", odom.v), ("x", odom.x), ("y", odom.y), ("yaw", odom.yaw)):
             series[key].append(value)
+        if every:
+            series["scan"].append(scan_row(scan) if step % every == 0 else None)
         session.cmd_vel(v_cmd, 0.0)
         session.run(period)
     scan = session.scan()   # the state at the end; the last command still holds
     final = front_distance(scan, half_angle, true=True)
+    odom = session.odometry()
     for key, value in (("t", session.t - start_t), ("measured", front_distance(scan, half_angle)),
-                       ("true", final), ("v_cmd", session.drive.command[0]), ("v", session.odometry().v)):
+                       ("true", final), ("v_cmd", session.drive.command[0]), ("v", odom.v), ("x", odom.x),
+                       ("y", odom.y), ("yaw", odom.yaw)):
         series[key].append(value)
+    if every:
+        series["scan"].append(scan_row(scan))
     trues = [d for d in series["true"] if d is not None]
     nearest = min(trues) if trues else None
     last_second = series["v"][-(round(rate) + 1):]
@@ -169,6 +192,12 @@ def stop_at_wall(session: Session, target: float = stoplaw.TARGET, kp: float = s
         stopped=law.holding and all(abs(v) < STOPPED_SPEED for v in last_second),
         within_tolerance=final is not None and abs(final - target) <= tolerance, tolerance=tolerance,
         contacts=session.touches.to_list(), series=series)
+
+
+def _scan_every(rate: float) -> int:
+    """Record every how many samples taken at ``rate`` Hz so as to keep at most :data:`SCAN_RECORD_RATE` a
+    second."""
+    return max(1, math.ceil(rate / SCAN_RECORD_RATE - 1e-9))
 
 
 def _settling_time(times: list[float], values: list, final: float, band: float) -> float | None:

@@ -102,3 +102,21 @@ def front_distance(scan: Scan, half_angle: float = math.radians(10), *, true: bo
     angles = np.remainder(scan.angle_min + np.arange(len(values)) * scan.angle_increment + math.pi, math.tau) - math.pi
     ahead = values[(np.abs(angles) <= half_angle + 1e-9) & np.isfinite(values) & (values > 0.0)]
     return float(ahead.min()) if ahead.size else None
+
+
+def lidar_info(params: LidarParams) -> dict:
+    """The beam layout a recorded scan's ranges need (:func:`scan_row`): ``angle_min``, ``angle_increment``
+    (rad; beam i at ``angle_min + i·angle_increment`` CCW from the sensor's +x), ``range_min``, ``range_max`` (m)
+    and ``count``, the number of beams."""
+    return {"angle_min": params.min_angle, "angle_increment": params.angle_increment,
+            "range_min": params.range_min, "range_max": params.range_max, "count": params.samples}
+
+
+def scan_row(scan: Scan) -> list:
+    """One scan, compact, for a replay: ``[ox, oy, yaw, [mm, …]]`` — the sensor's world position (m, 4 decimals)
+    and heading (rad, 4 decimals), and each beam's reported range (noise included) in whole millimetres, -1 for a
+    beam that hit nothing (whether it reads ``inf`` or 0)."""
+    hit = np.isfinite(np.asarray(scan.true_ranges, float))
+    mm = np.where(hit, np.rint(np.asarray(scan.ranges, float) * 1000.0), -1.0).astype(int)
+    x, y, _, yaw = scan.origin
+    return [round(x, 4), round(y, 4), round(yaw, 4), mm.tolist()]
