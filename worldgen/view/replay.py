@@ -31,7 +31,7 @@ def thin(times: list[float], rate: float, limit: int) -> list[int]:
     if not times:
         return []
     span = times[-1] - times[0]
-    step = max(1.0 / rate, span / max(1, limit - 1))
+    step = max(1.0 / rate, span / max(1, limit))
     kept, last = [0], times[0]
     for i in range(1, len(times) - 1):
         if times[i] - last >= step - 1e-9:

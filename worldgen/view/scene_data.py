@@ -186,7 +186,9 @@ def world_items(source: WorldSource, meshes: list) -> list[dict]:
 
 
 def polygon_rings(geometry) -> list[list[list[list[float]]]]:
-    """A shapely (Multi)Polygon as a list of polygons, each [exterior, *holes] of [x, y] points (cm rounded)."""
+    """A shapely (Multi)Polygon as a list of polygons, each [exterior, *holes] of [x, y] points (mm rounded;
+    points within half a millimetre of the line through their neighbours left out)."""
+    geometry = geometry.simplify(0.0005)
     polygons = [geometry] if geometry.geom_type == "Polygon" else \
         [g for g in getattr(geometry, "geoms", []) if g.geom_type == "Polygon"]
     out = []
@@ -209,15 +211,14 @@ def plan(source: WorldSource) -> dict:
     prints = footprints_between(source.scene, *SLICE_Z)
     wall_prints = [p.geometry for p in prints if p.label.split("/")[0] in source.walls]
     other_prints = [p.geometry for p in prints if p.label.split("/")[0] not in source.walls]
-    rooms = world_rooms(source.scene)
-    named = _spec_rooms(source)
     room_items = []
-    for index, region in enumerate(rooms.rooms(), start=1):
+    if source.spec is not None:   # a spec's rooms, inside their walls (a door joins two, each keeps its name)
+        regions = [(f"room '{name}'", polygon) for name, polygon in _spec_rooms(source)]
+    else:                         # a world's: the closed free areas the robot fits in
+        regions = [(f"closed room {i}", region) for i, region in enumerate(world_rooms(source.scene).rooms(), 1)]
+    for text, region in regions:
         x0, y0, x1, y1 = region.bounds
-        point = region.representative_point()
-        name = next((n for n, polygon in named if polygon.covers(point)), None)
-        text = f"room '{name}'" if name else f"closed room {index}"
-        room_items.append({"n": f"{text}: {x1 - x0:.2f} × {y1 - y0:.2f} m, {region.area:.1f} m² of free floor",
+        room_items.append({"n": f"{text}: {x1 - x0:.2f} × {y1 - y0:.2f} m inside, {region.area:.1f} m² of floor",
                            "poly": polygon_rings(region)})
     everything = [g for g in (shapely.union_all(wall_prints) if wall_prints else None,
                               shapely.union_all(other_prints) if other_prints else None) if g is not None]
@@ -227,11 +228,18 @@ def plan(source: WorldSource) -> dict:
 
 
 def _spec_rooms(source: WorldSource) -> list:
+    """Each room of the spec: its name and its floor inside the walls (the centre-line polygon less half the
+    walls' thickness)."""
     import shapely
 
-    if source.spec is None:
-        return []
-    return [(room.name, shapely.Polygon(room.vertices)) for room in source.spec.rooms if len(room.vertices) >= 3]
+    out = []
+    for room in source.spec.rooms:
+        if len(room.vertices) < 3:
+            continue
+        inside = shapely.Polygon(room.vertices).buffer(-room.style.thickness / 2, join_style="mitre")
+        if not inside.is_empty:
+            out.append((room.name, inside))
+    return out
 
 
 def openings(source: WorldSource) -> list[dict]:
