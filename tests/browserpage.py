@@ -1,8 +1,8 @@
 """Helpers for the tests of the 3D pages: Debian's chromium, headless, driven by Playwright, and a probe of what a
 page did once opened (errors on its console, requests that tried to leave the file it was opened from).
 
-Test modules import the fixture and the context manager (``from browserpage import chromium, open_page``). The
-fixture skips when /usr/bin/chromium (Debian's ``chromium`` package) or Playwright (the ``browser`` extra, Python
+The fixture ``chromium`` is one for the whole session (tests/conftest.py imports it, so that every module shares the
+one browser: Playwright's sync API runs one instance at a time); test modules import ``open_page``. The fixture skips when /usr/bin/chromium (Debian's ``chromium`` package) or Playwright (the ``browser`` extra, Python
 3.9+) is not installed. Playwright's own browsers are never used nor downloaded.
 """
 
@@ -11,6 +11,7 @@ from __future__ import annotations
 import contextlib
 import os
 import re
+import sys
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -34,12 +35,14 @@ TIMEOUT_MS = 30_000
 def chromium() -> Iterator[Any]:
     """A headless chromium (a Playwright ``Browser``) for the whole session. Each ``launch`` runs on a fresh empty
     user-data-dir of Playwright's making, removed when the browser closes."""
+    # In CI (.ci/run installs both) a missing browser fails, but on Python 3.8, which Playwright no longer supports
+    missing = pytest.fail if os.environ.get("CI") and sys.version_info >= (3, 9) else pytest.skip
     if not CHROMIUM.is_file() or not os.access(str(CHROMIUM), os.X_OK):
-        pytest.skip(f"no {CHROMIUM} (Debian's chromium package: apt-get install chromium)")
+        missing(f"no {CHROMIUM} (Debian's chromium package: apt-get install chromium)")
     try:
         from playwright.sync_api import sync_playwright
     except ImportError:
-        pytest.skip("Playwright is not installed (pip install -e '.[browser]'; Python 3.9+)")
+        missing("Playwright is not installed (pip install -e '.[browser]'; Python 3.9+)")
     with sync_playwright() as playwright:
         browser = playwright.chromium.launch(executable_path=str(CHROMIUM), headless=True, args=CHROMIUM_ARGS,
                                              timeout=TIMEOUT_MS)

@@ -6,6 +6,8 @@ from pathlib import Path
 
 import pytest
 
+from browserpage import chromium  # noqa: F401  (one headless browser for every test module)
+
 REPO = Path(__file__).resolve().parent.parent
 EXAMPLES = REPO / "examples"
 SHARED = REPO.parent / "shared"

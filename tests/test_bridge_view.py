@@ -5,6 +5,7 @@ every submission with its verdict and links to each one's replay."""
 from __future__ import annotations
 
 import json
+import os
 import shutil
 import uuid
 
@@ -12,8 +13,8 @@ import pytest
 from lxml import html as lxml_html
 
 from bridgetools import NODES, need_ros, no_leftovers
-from browserpage import chromium, open_page  # noqa: F401  (the fixture)
-from conftest import EXAMPLES, CliRunner
+from browserpage import open_page
+from conftest import EXAMPLES, REPO, CliRunner
 from viewpixels import wait_ready
 from worldgen.cli import main
 from worldgen.ros.course import write_course
@@ -23,7 +24,7 @@ def _data(page_file) -> dict:
     return json.loads(lxml_html.fromstring(page_file.read_bytes()).get_element_by_id("worldgen-data").text)
 
 
-def test_a_real_run_is_replayed_where_the_robot_went(chromium, tmp_path, monkeypatch):  # noqa: F811
+def test_a_real_run_is_replayed_where_the_robot_went(chromium, tmp_path, monkeypatch):
     need_ros()
     tag = f"WORLDGEN_TEST_TAG={uuid.uuid4().hex}"
     monkeypatch.setenv(*tag.split("="))
@@ -46,6 +47,9 @@ def test_a_real_run_is_replayed_where_the_robot_went(chromium, tmp_path, monkeyp
         page = probe.page
         wait_ready(page)
         assert "stop-at-wall: pass" in page.inner_text("#side")
+        if os.environ.get("WORLDGEN_DOCS") == "1":   # the README's screenshot: the robot half-way to the wall
+            page.evaluate("window.worldgen.seek(5.5)")
+            page.screenshot(path=str(REPO / "docs" / "view_replay.png"))
         page.select_option("#speed", "16")
         page.click("#btn-play")
         page.wait_for_function("() => !window.worldgen.playing()", timeout=15000)
@@ -55,7 +59,7 @@ def test_a_real_run_is_replayed_where_the_robot_went(chromium, tmp_path, monkeyp
     no_leftovers(tag)
 
 
-def test_a_graded_class_has_an_index_with_every_verdict(chromium, tmp_path, monkeypatch):  # noqa: F811
+def test_a_graded_class_has_an_index_with_every_verdict(chromium, tmp_path, monkeypatch):
     need_ros()
     tag = f"WORLDGEN_TEST_TAG={uuid.uuid4().hex}"
     monkeypatch.setenv(*tag.split("="))

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from browserpage import chromium, open_page  # noqa: F401  (chromium: the fixture)
+from browserpage import open_page
 
 
 def _page(tmp_path: Path, body: str, name: str = "page.html") -> Path:

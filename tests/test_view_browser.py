@@ -2,7 +2,8 @@
 without a console error; the top view has wall pixels exactly where ``preview``'s geometry puts walls and the robot
 where it spawns; hovering names what is under the pointer; pressing play moves the robot along the recorded path.
 
-With ``WORLDGEN_DOCS=1`` the tests also write the README's screenshots into docs/.
+With ``WORLDGEN_DOCS=1`` the world page's test also writes the README's screenshot into docs/ (the replay's is
+written by tests/test_bridge_view.py, from a real run).
 """
 
 from __future__ import annotations
@@ -15,7 +16,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from browserpage import chromium, open_page  # noqa: F401  (the fixture)
+from browserpage import open_page
 from conftest import EXAMPLES, REPO
 from viewpixels import (DOOR, ROBOT, WALL_CUT, WINDOW, canvas_pixels, colour_mask, geometry_mask, pixel_centres, ring_share,
                         top_view, wait_ready, world_to_pixel)
@@ -78,7 +79,7 @@ def _write_world_page(tmp_path, source: Path, **kwargs) -> Path:
     return out
 
 
-def test_a_spec_page_draws_its_walls_and_robot_where_preview_does(chromium, tmp_path):  # noqa: F811
+def test_a_spec_page_draws_its_walls_and_robot_where_preview_does(chromium, tmp_path):
     from worldgen.geometry.placement import robot_radius
 
     page_file = _write_world_page(tmp_path, EXAMPLES / "two_rooms.yaml")
@@ -97,7 +98,7 @@ def test_a_spec_page_draws_its_walls_and_robot_where_preview_does(chromium, tmp_
         assert probe.console_errors == [] and probe.left_file == []
 
 
-def test_a_real_world_with_meshes_opens_offline(chromium, tmp_path, corpus):  # noqa: F811
+def test_a_real_world_with_meshes_opens_offline(chromium, tmp_path, corpus):
     world = corpus / "worlds" / "ROBOTIS-GIT__turtlebot3_simulations@noetic-devel__turtlebot3_gazebo_worlds_turtlebot3_world.world"
     models = (corpus / "models", corpus / "gazebo_models")
     page_file = _write_world_page(tmp_path, world, spawn=(-2.0, -0.5, 0.0), model_paths=models)
@@ -155,7 +156,7 @@ def _replay_file(tmp_path, trace: dict) -> Path:
     return out
 
 
-def test_play_moves_the_robot_along_the_recorded_path(chromium, tmp_path):  # noqa: F811
+def test_play_moves_the_robot_along_the_recorded_path(chromium, tmp_path):
     trace = _trace()
     page_file = _replay_file(tmp_path, trace)
     with open_page(chromium, page_file, viewport=(1100, 850)) as probe:
@@ -174,7 +175,6 @@ def test_play_moves_the_robot_along_the_recorded_path(chromium, tmp_path):  # no
         x, y, yaw = _pose_at(trace, t)
         assert (at["x"], at["y"], at["yaw"]) == pytest.approx((x, y, yaw), abs=0.01)
         assert at["x"] - start["x"] > 0.3
-        _docs_shot(page, "view_replay.png")
         page.select_option("#speed", "16")
         page.click("#btn-play")
         page.wait_for_function("() => !window.worldgen.playing()", timeout=10000)
@@ -186,7 +186,7 @@ def test_play_moves_the_robot_along_the_recorded_path(chromium, tmp_path):  # no
         assert probe.console_errors == [] and probe.left_file == []
 
 
-def test_the_slider_seeks_and_the_scan_follows(chromium, tmp_path):  # noqa: F811
+def test_the_slider_seeks_and_the_scan_follows(chromium, tmp_path):
     trace = _trace()
     page_file = _replay_file(tmp_path, trace)
     with open_page(chromium, page_file) as probe:
@@ -205,7 +205,7 @@ def test_the_slider_seeks_and_the_scan_follows(chromium, tmp_path):  # noqa: F81
         assert probe.console_errors == []
 
 
-def test_pages_work_without_the_page_data_reaching_outside(chromium, tmp_path):  # noqa: F811
+def test_pages_work_without_the_page_data_reaching_outside(chromium, tmp_path):
     """A hostile world name cannot run script in the page: the data is inert JSON."""
     world = tmp_path / "evil.world"
     world.write_text(

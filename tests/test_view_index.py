@@ -11,7 +11,7 @@ import re
 
 import lxml.html
 import pytest
-from browserpage import chromium, open_page  # noqa: F401  (chromium: the fixture)
+from browserpage import open_page
 
 from worldgen.check.report import Result
 from worldgen.core.findings import Finding

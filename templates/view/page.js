@@ -236,8 +236,8 @@ class WorldView {
   legend() {
     const entries = [];
     const groups = new Set(data.items.map(i => i.g));
-    if (groups.has('wall')) entries.push([WALL_CUT, 'wall (cut)']);
-    if (groups.has('obstacle')) entries.push([OBSTACLE_CUT, 'obstacle (cut)']);
+    if (groups.has('wall')) entries.push([WALL_CUT, 'wall']);
+    if (groups.has('obstacle')) entries.push([OBSTACLE_CUT, 'obstacle']);
     const types = new Set(data.openings.map(o => o.type));
     if (types.has('door')) entries.push([DOOR, 'door']);
     if (types.has('window')) entries.push([WINDOW, 'window']);

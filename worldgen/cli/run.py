@@ -99,15 +99,20 @@ def run(world, nodes, task, target, duration, rate, spawn, launch_file, robot, r
     result, text = run_single(world, nodes, task=task, target=target, duration=duration, rate=pace,
                               spawn=spawn_pose, robot=robot, no_hit=lidar_no_hit, fmt=fmt, junit=junit, plot=plot,
                               csv_path=csv_path, bag=bag, force=force, robot_ns=robot_ns, launch=launch_file,
-                              html=html, html_page=_replay_page if html is not None else None)
+                              html=html, html_page=_replay_page(nodes) if html is not None else None)
     click.echo(text, nl=False)
     sys.exit(EXIT_OK if result.ok else EXIT_FAILED)
 
 
-def _replay_page(result, world, trace) -> bytes:
-    from ..view.grades import run_page
+def _replay_page(nodes):
+    """The replay page's maker for a run of ``nodes`` (its title: the nodes' names)."""
+    names = [Path(n).name for n in nodes if ":=" not in n]
 
-    return run_page(result, world, trace, title=Path(result.path).name)
+    def page(result, world, trace) -> bytes:
+        from ..view.grades import run_page
+
+        return run_page(result, world, trace, title=", ".join(names) or Path(result.path).name)
+    return page
 
 
 def _write_reports(results, fmt: str, junit: Path | None) -> None:

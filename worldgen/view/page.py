@@ -104,7 +104,28 @@ def world_page(path: str | Path, *, spawn: tuple[float, float, float] | None = N
             raise InputError("--lidar needs a spawn pose", hint="give --spawn X,Y[,YAW] or a robot: in the spec")
         rays = scan_rays(source, model_paths)
     data = world_data(source, rays)
-    return render_page(data, title=source.title, subtitle=source.subtitle, findings=_scene_findings(source.scene))
+    return render_page(data, title=source.title, subtitle=source.subtitle, findings=_scene_findings(source.scene),
+                       metrics=world_facts(data))
+
+
+def world_facts(data: dict) -> list[tuple[str, str]]:
+    """What the side panel says of a world: its size, what it holds, the robot and where it spawns."""
+    x0, y0, x1, y1 = data["bounds"]
+    groups = [item["g"] for item in data["items"]]
+    facts = [("size", f"{x1 - x0:.2f} × {y1 - y0:.2f} m")]
+    for group, label in (("wall", "wall shapes"), ("obstacle", "obstacle shapes"), ("marking", "floor markings")):
+        if group in groups:
+            facts.append((label, str(groups.count(group))))
+    for kind in ("door", "window"):
+        count = sum(o["type"] == kind for o in data["openings"])
+        if count:
+            facts.append((f"{kind}s", str(count)))
+    facts.append(("rooms", str(len(data["plan"]["rooms"]))))
+    robot = data["robot"]
+    if robot["spawn"] is not None:
+        x, y, yaw = robot["spawn"]
+        facts.append((robot["model"], f"({x:.2f}, {y:.2f}), yaw {yaw * 57.29578:.0f}°"))
+    return facts
 
 
 def _scene_findings(scene) -> list[Finding]:
