@@ -197,3 +197,16 @@ def test_validate_html_writes_an_index_of_every_file(tmp_path):
     assert refused.exit_code == 2 and "holds no worldgen report" in refused.output and (other / "cat.jpg").exists()
     again = CliRunner().invoke(main, ["validate", str(folder / "maze.yaml"), "--skip-sim", "--html", str(report)])
     assert again.exit_code == 0 and len(list((report / "pages").iterdir())) == 1
+
+
+def test_every_robot_of_a_launch_file_is_drawn(tmp_path):
+    runner = CliRunner()
+    assert runner.invoke(main, ["build", str(EXAMPLES / "enclosed_room.yaml"), "-o", str(tmp_path)]).exit_code == 0
+    text = (EXAMPLES / "two_robots.launch").read_text(encoding="utf-8")
+    text = text.replace("$(find class_meeting_02_custom_gazebo_world)/worlds/enclosed_room.world",
+                        str(tmp_path / "enclosed_room.world"))
+    launch = tmp_path / "two.launch"
+    launch.write_text(text, encoding="utf-8")
+    data = page_data(world_page(launch))
+    assert data["robot"]["spawn"] == [-1.0, 0.0, 3.142]
+    assert [(o["ns"], o["model"], o["spawn"]) for o in data["others"]] == [("/tb3_1", "burger", [1.0, 0.0, 0.0])]

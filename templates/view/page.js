@@ -174,7 +174,8 @@ class WorldView {
       this.pickable.push(box);
     }
     this.scene.add(this.openings);
-    this.robot = this.buildRobot();
+    this.robot = this.buildRobot(data.robot, Boolean(data.robot.spawn) || Boolean(replay));
+    for (const other of data.others || []) this.buildRobot(other, true);
     this.rays = new THREE.LineSegments(new THREE.BufferGeometry(),
       new THREE.LineBasicMaterial({ vertexColors: true, transparent: true, opacity: 0.45 }));
     this.rays.frustumCulled = false;
@@ -188,13 +189,12 @@ class WorldView {
     this.legend();
   }
 
-  buildRobot() {
-    const spec = data.robot;
+  buildRobot(spec, shown) {
     const group = new THREE.Group();
     const body = new THREE.Group();
     for (const part of spec.parts) {
       const mesh = place(new THREE.Mesh(primitive(part), material(part.c)), part);
-      body.add(label(mesh, `TurtleBot3 ${part.n}`));
+      body.add(label(mesh, `TurtleBot3 ${spec.ns ? spec.ns + ' ' : ''}${part.n}`));
       this.pickable.push(mesh);
     }
     group.add(body);
@@ -207,7 +207,7 @@ class WorldView {
     const head = new THREE.Mesh(new THREE.ShapeGeometry(arrow), new THREE.MeshBasicMaterial({ color: ROBOT, side: THREE.DoubleSide }));
     head.position.z = 0.003;
     group.add(head);
-    group.visible = Boolean(spec.spawn) || Boolean(replay);
+    group.visible = shown;
     if (spec.spawn) this.pose(group, spec.spawn[0], spec.spawn[1], spec.spawn[2]);
     this.scene.add(group);
     return group;

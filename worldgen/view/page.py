@@ -139,15 +139,14 @@ def world_source(path: str | Path, scene, spawn=None, robot: str = "burger"):
     import dataclasses
 
     from ..check.validate import input_kind
-    from .scene_data import WorldSource, read_source
+    from .scene_data import WorldSource, read_source, static_models, world_title
 
     path = Path(path)
     if path.is_file() and input_kind(path) == "spec":
         source = read_source(path)
     else:
-        walls = frozenset(s.model for s in scene.shapes if s.static)
-        title = f"world '{scene.world_name}'" if scene.world_name else path.name
-        source = WorldSource(scene, title, path.name, world_path=str(path), walls=walls)
+        source = WorldSource(scene, world_title(scene, path), path.name, world_path=str(path),
+                             walls=static_models(scene))
     return dataclasses.replace(source, spawn=tuple(spawn) if spawn is not None else source.spawn, robot=robot)
 
 

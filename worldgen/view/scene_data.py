@@ -39,6 +39,7 @@ class WorldSource:
     world_path: str | None = None     # for the LiDAR job: a world file, or the SDF text written for a spec
     world_text: str | None = None
     walls: frozenset = field(default_factory=frozenset)   # models drawn as walls (the rest are obstacles)
+    others: tuple = ()   # a launch file's other robots: (namespace, model, (x, y, yaw)) each
 
 
 def read_source(path: str | Path, model_paths: Sequence[str | Path] = ()) -> WorldSource:
@@ -81,9 +82,18 @@ def _world_source(path: Path, model_paths, title: str | None = None) -> WorldSou
     from ..sdf.reader import read_world
 
     scene = read_world(path, model_paths=tuple(model_paths))
-    walls = frozenset(s.model for s in scene.shapes if s.static)
-    name = title or (f"world '{scene.world_name}'" if scene.world_name else path.name)
-    return WorldSource(scene, name, path.name, world_path=str(path), walls=walls)
+    return WorldSource(scene, title or world_title(scene, path), path.name, world_path=str(path),
+                       walls=static_models(scene))
+
+
+def world_title(scene: Scene, path: Path) -> str:
+    """A world's name, unless it is the ``default`` that Gazebo gives every world: then its file's."""
+    return f"world '{scene.world_name}'" if scene.world_name and scene.world_name != "default" else path.name
+
+
+def static_models(scene: Scene) -> frozenset:
+    """The models a world page draws as walls: those with static shapes."""
+    return frozenset(s.model for s in scene.shapes if s.static)
 
 
 def _launch_source(path: Path, model_paths) -> WorldSource:
@@ -98,13 +108,19 @@ def _launch_source(path: Path, model_paths) -> WorldSource:
         raise InputError(f"the world this launch file starts cannot be found: {info.world_ref or '(none)'}",
                          path=path, hint="make its world_name an existing world file, or view the world itself")
     source = _world_source(Path(info.world_path), model_paths)
-    spawn = None
-    if info.spawn is not None:
-        values = list(info.spawn) + [0.0] * (4 - len(info.spawn))
-        spawn = (float(values[0]), float(values[1]), float(values[3]))
+    spawn = _pose3(info.spawn) if info.spawn is not None else None
     robot = info.model if info.model in ROBOT_MODELS else "burger"
-    return dataclasses.replace(source, subtitle=f"{path.name} → {Path(info.world_path).name}", spawn=spawn,
-                               robot=robot)
+    others = tuple((r.ns, r.robot if r.robot in ROBOT_MODELS else robot, _pose3(r.pose))
+                   for r in info.robots[1:] if r.pose is not None)
+    return dataclasses.replace(source, subtitle=f"{path.name} → {Path(info.world_path).name}",
+                               spawn=_pose3(info.robots[0].pose) if info.robots and info.robots[0].pose else spawn,
+                               robot=robot, others=others)
+
+
+def _pose3(pose) -> tuple[float, float, float]:
+    """A launch file's pose (x, y, z, yaw) as (x, y, yaw)."""
+    values = list(pose) + [0.0] * (4 - len(pose))
+    return (float(values[0]), float(values[1]), float(values[3]))
 
 
 # ------------------------------------------------------------------------------------------------ the data
@@ -348,6 +364,8 @@ def world_data(source: WorldSource, rays=None) -> dict:
     data = {"title": source.title, "subtitle": source.subtitle, "items": items, "plan": cut,
             "openings": openings(source), "bounds": box, "floor": floor(source, box),
             "robot": robot_data(source.robot, source.spawn)}
+    if source.others:
+        data["others"] = [dict(robot_data(model, pose), ns=ns) for ns, model, pose in source.others]
     if meshes:
         data["glb"] = meshes_glb(meshes)
     if rays:
