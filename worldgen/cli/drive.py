@@ -179,10 +179,10 @@ def gain_sets(kp: tuple, ki: tuple, kd: tuple) -> list[dict]:
 
 
 def _summary(result: dict) -> dict:
-    """The JSON report: everything but the time series (those go to --csv) and the wall-clock time (so the same
-    run gives the same report)."""
+    """The JSON report: everything but the time series (those go to --csv), the LiDAR's layout (recorded for
+    --html) and the wall-clock time (so the same run gives the same report)."""
     runs = [{k: v for k, v in run.items() if k != "series"} for run in result["runs"]]
-    return {**{k: v for k, v in result.items() if k != "wall_seconds"}, "runs": runs,
+    return {**{k: v for k, v in result.items() if k not in ("wall_seconds", "lidar")}, "runs": runs,
             "ok": all(run["ok"] for run in runs)}
 
 
