@@ -93,5 +93,7 @@ def test_a_graded_class_has_an_index_with_every_verdict(chromium, tmp_path, monk
     with open_page(chromium, bob) as probe:
         wait_ready(probe.page)
         assert "touched" in probe.page.inner_text("#side")
+        probe.page.click("a.back")   # back to the class
+        probe.page.wait_for_selector("tr[data-name]")
         assert probe.console_errors == [] and probe.left_file == []
     no_leftovers(tag)

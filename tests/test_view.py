@@ -189,6 +189,8 @@ def test_validate_html_writes_an_index_of_every_file(tmp_path):
     assert linked[str(folder / "broken.world")] is None   # nothing to draw
     page = report / linked[str(folder / "two_rooms.yaml")]
     assert page_data(page.read_bytes())["robot"]["model"] == "waffle"
+    back = lxml_html.fromstring(page.read_bytes()).xpath("//a[@class='back']/@href")[0]
+    assert (page.parent / back).resolve() == (report / "index.html").resolve()
     # a folder of someone else's is never replaced; ours is
     other = tmp_path / "photos"
     other.mkdir()

@@ -369,6 +369,14 @@ class Replay {
     el('speed').addEventListener('change', e => { this.speed = Number(e.target.value); });
     this.speed = Number(el('speed').value);
     el('slider').addEventListener('input', e => { this.pause(); this.seek(Number(e.target.value)); });
+    document.addEventListener('keydown', e => {   // space: play or pause; arrows: a tenth of a second (shift: 1 s)
+      if (e.target.closest && e.target.closest('input, select')) return;
+      if (e.key === ' ') { e.preventDefault(); if (this.playing) this.pause(); else this.play(); }
+      else if (e.key === 'ArrowRight' || e.key === 'ArrowLeft') {
+        this.pause();
+        this.seek(this.t + (e.key === 'ArrowRight' ? 1 : -1) * (e.shiftKey ? 1 : 0.1));
+      }
+    });
     this.seek(0);
   }
 

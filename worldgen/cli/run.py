@@ -73,12 +73,12 @@ def run(world, nodes, task, target, duration, rate, spawn, launch_file, robot, r
         pages: dict = {}
         each = None
         if html is not None:
-            from ..view.grades import check_report_folder, run_page
+            from ..view.grades import BACK, check_report_folder, run_page
 
             check_report_folder(html)
 
             def each(result, world_run, trace):
-                pages[result.path] = run_page(result, world_run, trace)
+                pages[result.path] = run_page(result, world_run, trace, back=BACK)
 
         results = grade_folder(world, folder_world, task=task, target=target, duration=duration, rate=pace,
                                spawn=spawn_pose, robot=robot, no_hit=lidar_no_hit, jobs=jobs, nodes=nodes,

@@ -18,6 +18,7 @@ from ..check.report import Result
 INDEX = "index.html"
 PAGES = "pages"
 GENERATOR = '<meta name="generator" content="worldgen">'
+BACK = f"../{INDEX}"   # a submission's page's link to the index
 
 
 def page_names(names: Sequence[str]) -> list[str]:
@@ -96,17 +97,16 @@ def validate_page(result: Result, model_paths=()) -> bytes | None:
         return None
     source = dataclasses.replace(source, spawn=result.spawn or source.spawn,
                                  robot=result.robot if result.robot in ("burger", "waffle", "waffle_pi") else source.robot)
-    side = panel(result)
-    return render_page(world_data(source), title=result.name, subtitle=source.subtitle, **side)
+    return render_page(world_data(source), title=result.name, subtitle=source.subtitle, back=BACK, **panel(result))
 
 
-def run_page(result: Result, world, trace: dict, title: str | None = None) -> bytes:
+def run_page(result: Result, world, trace: dict, title: str | None = None, back: str | None = None) -> bytes:
     """A graded run's page: the world it ran in (``world``: :class:`worldgen.bridge.world.World`, or anything with
     its ``path``, ``scene``, ``spawn`` and ``robot``), the robot replayed along its trace, the verdict and
-    findings."""
+    findings; ``back``: a link to the index (:data:`BACK` in a report folder)."""
     from .page import replay_page, world_source
     from .replay import run_replay
 
     source = world_source(world.path, world.scene, world.spawn, world.robot)
     return replay_page(source, run_replay(trace), title=title or result.name,
-                       subtitle=f"in {Path(str(world.path)).name}", **panel(result))
+                       subtitle=f"in {Path(str(world.path)).name}", back=back, **panel(result))

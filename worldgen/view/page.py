@@ -63,8 +63,10 @@ def finding_items(findings: Sequence[Finding]) -> list[dict]:
 
 
 def render_page(data: dict, *, title: str, subtitle: str = "", findings: Sequence[Finding] = (),
-                verdict: str | None = None, verdict_text: str = "", metrics: Sequence[tuple[str, str]] = ()) -> bytes:
-    """The HTML page for ``data`` (a world's, with ``replay`` for a run), the findings and metrics beside it."""
+                verdict: str | None = None, verdict_text: str = "", metrics: Sequence[tuple[str, str]] = (),
+                back: str | None = None) -> bytes:
+    """The HTML page for ``data`` (a world's, with ``replay`` for a run), the findings and metrics beside it;
+    ``back``: a relative link to the class's index (a page of a ``--html DIR`` report)."""
     from ..core.resources import render_template
     from .vendor import THREE_VERSION, modules
 
@@ -80,7 +82,8 @@ def render_page(data: dict, *, title: str, subtitle: str = "", findings: Sequenc
         boot=Markup(boot), boot_hash=_csp_hash(f"\n{boot}\n"), three_version=THREE_VERSION,
         three_license=Markup(_script_text("LICENSE", libraries["LICENSE"])), replay=replay is not None,
         replay_duration=(replay["t"][-1] if replay and replay["t"] else 0), rays="rays" in data or replay is not None,
-        findings=finding_items(findings), verdict=verdict, verdict_text=verdict_text, metrics=list(metrics))
+        findings=finding_items(findings), verdict=verdict, verdict_text=verdict_text, metrics=list(metrics),
+        back=back)
     return html.encode("utf-8")
 
 
@@ -151,7 +154,8 @@ def world_source(path: str | Path, scene, spawn=None, robot: str = "burger"):
 
 
 def replay_page(source, replay: dict, *, title: str, subtitle: str = "", findings: Sequence[Finding] = (),
-                verdict: str | None = None, verdict_text: str = "", metrics: Sequence[tuple[str, str]] = ()) -> bytes:
+                verdict: str | None = None, verdict_text: str = "", metrics: Sequence[tuple[str, str]] = (),
+                back: str | None = None) -> bytes:
     """The page of a run: the world of ``source`` (:func:`world_source`), the robot replayed along ``replay``
     (:mod:`.replay`), the verdict, metrics and findings beside it."""
     from .scene_data import world_data
@@ -161,7 +165,7 @@ def replay_page(source, replay: dict, *, title: str, subtitle: str = "", finding
     data["robot"]["spawn"] = [replay["x"][0], replay["y"][0], replay["yaw"][0]] if replay["t"] else \
         data["robot"]["spawn"]
     return render_page(data, title=title, subtitle=subtitle, findings=findings, verdict=verdict,
-                       verdict_text=verdict_text, metrics=metrics)
+                       verdict_text=verdict_text, metrics=metrics, back=back)
 
 
 def drive_page(world: str | Path, result: dict, model_paths: Sequence[str | Path] = (),
