@@ -125,7 +125,7 @@ def test_a_run_is_thinned_to_what_the_eye_needs():
     assert contact["t"] == 20.0 and (contact["x"], contact["y"]) == pytest.approx((math.cos(2), math.sin(2)), abs=2e-3)
     assert contact["n"] == "Wall_1"
     hour = run_replay(trace_of(3600.0))
-    assert len(hour["t"]) <= MAX_POSES + 1 and len(hour["scans"]["t"]) <= MAX_SCANS + 1
+    assert len(hour["t"]) == MAX_POSES and len(hour["scans"]["t"]) == MAX_SCANS
 
 
 def test_a_replay_page_of_a_minute_is_under_three_megabytes():
@@ -147,14 +147,24 @@ def test_a_replay_page_of_a_minute_is_under_three_megabytes():
 @settings(max_examples=200, deadline=None)
 @given(st.lists(st.floats(0, 1000, allow_nan=False), min_size=1, max_size=400), st.floats(0.5, 50),
        st.integers(2, 100))
-def test_thinning_keeps_the_ends_and_the_rate(times, rate, limit):
+def test_thinning_keeps_the_ends_and_the_limit(times, rate, limit):
     times = sorted(times)
     kept = thin(times, rate, limit)
     assert kept[0] == 0 and kept[-1] == len(times) - 1 and kept == sorted(set(kept))
-    step = max(1 / rate, (times[-1] - times[0]) / limit)
-    gaps = [times[b] - times[a] for a, b in zip(kept[:-2], kept[1:-1])]
-    assert all(g >= step - 1e-6 for g in gaps)
-    assert len(kept) <= limit + 1
+    assert len(kept) <= limit
+    step = max(1 / rate, (times[-1] - times[0]) / (limit - 1))
+    ticks = [math.floor((times[i] - times[0]) / step + 0.5) for i in kept[:-1]]
+    assert ticks == sorted(set(ticks))   # at most one sample a tick (the last sample aside)
+
+
+@settings(max_examples=50, deadline=None)
+@given(st.lists(st.floats(-0.004, 0.004), min_size=50, max_size=400))
+def test_thinning_keeps_a_sensors_own_rate_through_its_jitter(jitter):
+    """Scans 0.2 s apart, each up to 4 ms early or late, thinned to 5 a second: every one is kept."""
+    times = [k * 0.2 + (j if k else 0.0) for k, j in enumerate(jitter)]
+    assert thin(times, 5.0, 10_000) == list(range(len(times)))
+    ten_minutes = [k / 30 for k in range(30 * 600 + 1)]
+    assert len(thin(ten_minutes, 10.0, MAX_POSES)) == 6001
 
 
 # ------------------------------------------------------------------------------------------- command lines
@@ -196,7 +206,7 @@ def test_validate_html_writes_an_index_of_every_file(tmp_path):
     other.mkdir()
     (other / "cat.jpg").write_bytes(b"\xff\xd8")
     refused = CliRunner().invoke(main, ["validate", str(folder / "maze.yaml"), "--skip-sim", "--html", str(other)])
-    assert refused.exit_code == 2 and "holds no worldgen report" in refused.output and (other / "cat.jpg").exists()
+    assert refused.exit_code == 2 and "not a worldgen report (cat.jpg" in refused.output and (other / "cat.jpg").exists()
     again = CliRunner().invoke(main, ["validate", str(folder / "maze.yaml"), "--skip-sim", "--html", str(report)])
     assert again.exit_code == 0 and len(list((report / "pages").iterdir())) == 1
 
@@ -212,3 +222,64 @@ def test_every_robot_of_a_launch_file_is_drawn(tmp_path):
     data = page_data(world_page(launch))
     assert data["robot"]["spawn"] == [-1.0, 0.0, 3.142]
     assert [(o["ns"], o["model"], o["spawn"]) for o in data["others"]] == [("/tb3_1", "burger", [1.0, 0.0, 0.0])]
+
+
+def test_a_drive_replay_puts_contacts_at_the_exercise_s_time():
+    """The exercise's series count from its start, the session's contacts from before the settling: the replay
+    puts a contact where the robot was when it happened."""
+    from worldgen.view.replay import drive_replay
+
+    times = [i / 5 for i in range(51)]
+    run = {"series": {"t": times, "x": [min(t, 4.0) * 0.2 for t in times], "y": [0.0] * 51, "yaw": [0.0] * 51,
+                      "true": [1.0] * 51, "v_cmd": [0.2] * 51, "w_cmd": [0.0] * 51},
+           "contacts": [{"link": "base_link", "shape": "Wall_1", "time": 4.5, "depth": 0.001}], "start_t": 0.5}
+    replay = drive_replay({"behaviour": "stop-at-wall", "runs": [run]})
+    contact = replay["contacts"][0]
+    assert contact["t"] == 4.0 and contact["x"] == pytest.approx(0.8)
+
+
+def test_a_spin_replay_shows_the_stop_it_commanded(tmp_path):
+    from worldgen.check.drive_targets import drive_one
+    from worldgen.view.replay import drive_replay
+
+    request = {"behaviour": "spin", "robot": None, "spawn": None, "gains": [{}], "target": 0.5, "duration": 2.0,
+               "max_speed": 0.22, "omega": 1.5, "rate": 5.0, "front_angle": 10.0, "no_hit": "inf",
+               "tolerance": 0.05, "stop_band": None, "record_scans": True}
+    result = drive_one(EXAMPLES / "enclosed_room.yaml", "spec", request, ())
+    replay = drive_replay(result)
+    turning = [w for t, w in zip(replay["t"], replay["w"]) if t < 1.9]
+    stopping = [w for t, w in zip(replay["t"], replay["w"]) if t > 2.05]
+    assert set(turning) == {1.5} and stopping and set(stopping) == {0.0}
+    assert replay["scans"]["o"][-1][2] != replay["scans"]["o"][0][2]   # the scans turn with the robot
+
+
+def test_html_needs_three_js_before_anything_runs(tmp_path, monkeypatch):
+    import worldgen.view.vendor as vendor
+
+    monkeypatch.setattr(vendor, "FOLDER", tmp_path / "no-three")
+    runner = CliRunner()
+    for args in (["validate", str(EXAMPLES / "maze.yaml"), "--html", str(tmp_path / "r")],
+                 ["drive", str(EXAMPLES / "maze.yaml"), "--html", str(tmp_path / "d.html")],
+                 ["view", str(EXAMPLES / "maze.yaml"), "-o", str(tmp_path / "v.html")]):
+        result = runner.invoke(main, args)
+        assert result.exit_code == 2 and "three.js is missing" in result.output, result.output
+        assert "Traceback" not in result.output
+    assert sorted(p.name for p in tmp_path.iterdir()) == []
+
+
+def test_a_report_never_replaces_other_files_and_links_each_row_to_its_own_page(tmp_path):
+    runner = CliRunner()
+    site = tmp_path / "site"
+    assert runner.invoke(main, ["view", str(EXAMPLES / "maze.yaml"), "-o", str(site / "index.html")]).exit_code == 0
+    (site / "notes.txt").write_text("mine", encoding="utf-8")
+    refused = runner.invoke(main, ["validate", str(EXAMPLES / "maze.yaml"), "--skip-sim", "--html", str(site)])
+    assert refused.exit_code == 2 and "not a worldgen report" in refused.output
+    assert sorted(p.name for p in site.iterdir()) == ["index.html", "notes.txt"]
+    report = tmp_path / "report"
+    twice = [str(EXAMPLES / "maze.yaml"), str(EXAMPLES / "maze.yaml")]
+    assert runner.invoke(main, ["validate", *twice, "--skip-sim", "--html", str(report)]).exit_code == 0
+    rows = json.loads(lxml_html.fromstring((report / "index.html").read_bytes()).get_element_by_id("worldgen-index").text)
+    assert len({r["href"] for r in rows}) == 2 and all((report / r["href"]).is_file() for r in rows)
+    (report / "pages" / "stray.txt").write_text("x", encoding="utf-8")
+    again = runner.invoke(main, ["validate", str(EXAMPLES / "maze.yaml"), "--skip-sim", "--html", str(report)])
+    assert again.exit_code == 2 and "stray.txt" in again.output

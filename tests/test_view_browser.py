@@ -220,3 +220,14 @@ def test_pages_work_without_the_page_data_reaching_outside(chromium, tmp_path):
         assert probe.page.evaluate("window.pwned === undefined")
         assert "</script><script>" in probe.page.inner_text("h1")
         assert probe.console_errors == [] and probe.left_file == []
+
+
+def test_a_run_that_never_moved_shows_the_robot_at_its_spawn(chromium, tmp_path):
+    """A node that never started leaves a trace without odometry: the page stands the robot at its spawn."""
+    page_file = _replay_file(tmp_path, {"odom": [], "scans": [], "contacts": []})
+    with open_page(chromium, page_file) as probe:
+        wait_ready(probe.page)
+        at = probe.page.evaluate("window.worldgen.robot()")
+        assert (at["x"], at["y"], at["yaw"]) == pytest.approx((-1.0, 0.0, 0.0))
+        probe.page.click("#btn-play")
+        assert probe.console_errors == [] and probe.left_file == []

@@ -413,8 +413,10 @@ class Replay {
 
   seek(t) {
     this.t = Math.max(0, Math.min(this.end, t));
-    const p = this.poseAt(this.t);
-    this.view.pose(this.view.robot, p.x, p.y, p.yaw);
+    if (replay.t.length) {   // a run without odometry (it never started) keeps the robot at its spawn
+      const p = this.poseAt(this.t);
+      this.view.pose(this.view.robot, p.x, p.y, p.yaw);
+    }
     this.view.setRays(this.scanAt(this.t));
     el('slider').value = String(this.t);
     el('clock').textContent = `${this.t.toFixed(2)} s of ${this.end.toFixed(2)} s`;

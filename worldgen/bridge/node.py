@@ -354,6 +354,7 @@ def main(argv: list[str]) -> int:
         bridge.publish_static()
         timing = {"sim_time_s": 0.0, "wall_time_s": 0.0, "real_time_factor": None, "interrupted": True}
         try:
+            _deliver_interrupts()   # one that came while starting is raised here, where it is handled
             if config.get("start_param"):
                 wait_for_start(rospy, bridge, config["start_param"])
             print("worldgen-sim: running", file=sys.stderr, flush=True)
@@ -413,6 +414,23 @@ def _interrupt(signum, frame):
     raise KeyboardInterrupt(f"signal {signum}")
 
 
+STOP_SIGNALS = ("SIGINT", "SIGTERM", "SIGHUP")
+
+
+def _hold_interrupts() -> None:
+    """Hold the stop signals until :func:`_deliver_interrupts`: while the node starts, a KeyboardInterrupt could be
+    raised inside an import's clean-up callback, where Python prints it as "Exception ignored" and carries on."""
+    import signal
+
+    signal.pthread_sigmask(signal.SIG_BLOCK, {getattr(signal, s) for s in STOP_SIGNALS})
+
+
+def _deliver_interrupts() -> None:
+    import signal
+
+    signal.pthread_sigmask(signal.SIG_UNBLOCK, {getattr(signal, s) for s in STOP_SIGNALS})
+
+
 def _ignore_interrupts() -> None:
     import signal
 
@@ -428,6 +446,7 @@ if __name__ == "__main__":
 
     signal.signal(signal.SIGTERM, _interrupt)
     signal.signal(signal.SIGHUP, _interrupt)
+    _hold_interrupts()
     try:
         sys.exit(main(sys.argv[1:]))
     except KeyboardInterrupt:   # interrupted before the loop started: nothing to write

@@ -96,6 +96,10 @@ def drive(world, behaviour, robot, spawn, target, kp, ki, kd, duration, max_spee
         if not folder.is_dir():
             raise InputError("--model-path is not a folder", path=folder, hint="give a folder of Gazebo models")
     outputs = [p for p in (plot, csv_path, html) if p is not None]
+    if html is not None:
+        from ..view.page import require_three
+
+        require_three()
     check_free(outputs, force)
     request = {
         "behaviour": behaviour, "robot": _robot_arg(robot), "spawn": list(parse_spawn(spawn)) if spawn is not None

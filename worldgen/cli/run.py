@@ -64,6 +64,10 @@ def run(world, nodes, task, target, duration, rate, spawn, launch_file, robot, r
 
     from ..check.discover import parse_shard
 
+    if html is not None:
+        from ..view.page import require_three
+
+        require_three()
     pace = parse_rate(rate)
     shard_k_n = parse_shard(shard) if shard is not None else None
     spawn_pose = parse_spawn(spawn) if spawn is not None else None
@@ -94,6 +98,11 @@ def run(world, nodes, task, target, duration, rate, spawn, launch_file, robot, r
 
         raise InputError("--shard takes a folder of submissions", path=world,
                          hint="give the folder holding one package per student, or leave out --shard")
+    if html is not None and html.is_dir():
+        from ..core.errors import InputError
+
+        raise InputError("is a folder: --html of one run is a page", path=html,
+                         hint="give a file name such as run.html (a folder of pages is for a folder of submissions)")
     from ..bridge.single import run_single
 
     result, text = run_single(world, nodes, task=task, target=target, duration=duration, rate=pace,

@@ -66,8 +66,10 @@ def validate(paths, robot, spawn, launch_file, model_paths, fmt, junit, jobs, li
         _check_writable(junit)
     if html is not None:
         from ..view.grades import check_report_folder
+        from ..view.page import require_three
 
         check_report_folder(html)
+        require_three()
     notes: list[str] = []
     planned = plan(paths, options, notes)
     for note in notes:

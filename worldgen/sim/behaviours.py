@@ -51,7 +51,8 @@ class SpinResult:
     max_drift: float
     drift_limit: float   # the most max_drift may be for the run to count as spinning in place
     contacts: list[dict]
-    series: dict[str, list] = field(default_factory=dict)   # t, x, y, yaw, drift (and scan: see spin)
+    series: dict[str, list] = field(default_factory=dict)   # t, x, y, yaw, drift, w_cmd (and scan: see spin)
+    start_t: float = 0.0   # the session's time when the series' t is 0 (contacts' times are the session's)
 
     @property
     def ok(self) -> bool:
@@ -68,7 +69,7 @@ def spin(session: Session, seconds: float = 2 * math.pi, omega: float = 1.0, sam
     ``record_scans`` (and a LiDAR): the series also has ``scan``, as :func:`stop_at_wall`'s."""
     start = session.odometry()
     session.start_exercise()
-    series: dict[str, list] = {"t": [], "x": [], "y": [], "yaw": [], "drift": []}
+    series: dict[str, list] = {"t": [], "x": [], "y": [], "yaw": [], "drift": [], "w_cmd": []}
     every = _scan_every(sample_rate) if record_scans and session.lidar is not None else 0
     if every:
         series["scan"] = []
@@ -85,12 +86,13 @@ def spin(session: Session, seconds: float = 2 * math.pi, omega: float = 1.0, sam
         last_yaw = o.yaw
         drift = math.hypot(o.x - start.x, o.y - start.y)
         max_drift = max(max_drift, drift)
-        for key, value in (("t", o.t - start.t), ("x", o.x), ("y", o.y), ("yaw", o.yaw), ("drift", drift)):
+        for key, value in (("t", o.t - start.t), ("x", o.x), ("y", o.y), ("yaw", o.yaw), ("drift", drift),
+                           ("w_cmd", omega if i < steps else 0.0)):
             series[key].append(value)
         if every:
             series["scan"].append(scan_row(session.scan()) if i % every == 0 else None)
     return SpinResult(omega=omega, seconds=seconds, turned=turned, drift=series["drift"][-1], max_drift=max_drift,
-                      drift_limit=drift_limit, contacts=session.touches.to_list(), series=series)
+                      drift_limit=drift_limit, contacts=session.touches.to_list(), series=series, start_t=start.t)
 
 
 @dataclass
@@ -115,6 +117,7 @@ class StopAtWallResult:
     tolerance: float
     contacts: list[dict]
     series: dict[str, list] = field(default_factory=dict)   # t, measured, true, v_cmd, v, x, y, yaw (, scan)
+    start_t: float = 0.0   # the session's time when the series' t is 0 (contacts' times are the session's)
 
     @property
     def ok(self) -> bool:
@@ -191,7 +194,7 @@ def stop_at_wall(session: Session, target: float = stoplaw.TARGET, kp: float = s
         band=band, stop_band=stop_band, stop_time=stop_time,
         stopped=law.holding and all(abs(v) < STOPPED_SPEED for v in last_second),
         within_tolerance=final is not None and abs(final - target) <= tolerance, tolerance=tolerance,
-        contacts=session.touches.to_list(), series=series)
+        contacts=session.touches.to_list(), series=series, start_t=start_t)
 
 
 def _scan_every(rate: float) -> int:

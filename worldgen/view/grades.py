@@ -17,7 +17,7 @@ from ..check.report import Result
 
 INDEX = "index.html"
 PAGES = "pages"
-GENERATOR = '<meta name="generator" content="worldgen">'
+MARKER = '<meta name="worldgen-report" content="index">'   # only the index of a report has it
 BACK = f"../{INDEX}"   # a submission's page's link to the index
 
 
@@ -47,17 +47,27 @@ def panel(result: Result) -> dict:
 
 
 def check_report_folder(folder: Path) -> None:
-    """Refuse (InputError) a ``--html`` folder that holds something other than a worldgen report."""
+    """Refuse (InputError) a ``--html`` folder that holds anything but a report an earlier ``--html`` wrote (its
+    index, with :data:`MARKER`, and ``pages/*.html``): the folder is replaced as a whole."""
     from ..core.errors import InputError
 
-    if not folder.exists():
+    if not folder.exists() and not folder.is_symlink():
         return
-    if not folder.is_dir():
+    if not folder.is_dir() or folder.is_symlink():
         raise InputError(f"cannot write the report folder {folder}: it is a file", hint="give --html a folder name")
+    entries = list(folder.iterdir())
+    if not entries:
+        return
     index = folder / INDEX
-    ours = index.is_file() and GENERATOR in index.read_text(encoding="utf-8", errors="replace")[:4000]
-    if any(folder.iterdir()) and not ours:
-        raise InputError(f"{folder} is not empty and holds no worldgen report",
+    ours = index.is_file() and MARKER in index.read_text(encoding="utf-8", errors="replace")[:4000]
+    pages = folder / PAGES
+    others = [e for e in entries if e.name not in (INDEX, PAGES)]
+    if pages.exists():
+        others += [e for e in pages.iterdir() if not (e.is_file() and e.suffix == ".html")] if pages.is_dir() \
+            else [pages]
+    if not ours or others:
+        raise InputError(f"{folder} holds files that are not a worldgen report"
+                         + (f" ({others[0].name}, …)" if others else ""),
                          hint="give --html a new folder, or one an earlier --html wrote")
 
 
@@ -67,15 +77,28 @@ def write_report(folder: Path, results: list[Result], page_of: Callable[[Result]
     from .index import index_page, index_rows
 
     files: dict[str, bytes] = {}
-    hrefs: dict[str, str] = {}
+    hrefs: list[str | None] = []
     for result, name in zip(results, page_names([r.name for r in results])):
-        page = page_of(result)
+        page = _page_or_none(page_of, result)
         if page is not None:
             files[name] = page
-            hrefs[result.name] = name
+        hrefs.append(name if page is not None else None)
     summary = f"{sum(r.ok for r in results)} of {len(results)} pass"
     files[INDEX] = index_page(index_rows(results, hrefs), title, summary)
     return write_tree(folder, files, force=True)
+
+
+def _page_or_none(page_of, result: Result) -> bytes | None:
+    """``page_of(result)``; a page that cannot be made (a world gone since, a bug of ours) is a row without a
+    link and one warning line, never the whole report lost."""
+    try:
+        return page_of(result)
+    except Exception as err:   # noqa: BLE001  (any failure of one page)
+        import sys
+
+        first = (str(err).splitlines() or [type(err).__name__])[0]
+        print(f"worldgen: warning: no page for {result.name}: {first}", file=sys.stderr)
+        return None
 
 
 def validate_page(result: Result, model_paths=()) -> bytes | None:
@@ -85,6 +108,7 @@ def validate_page(result: Result, model_paths=()) -> bytes | None:
     import dataclasses
 
     from ..core.errors import WorldgenError
+    from ..spec.model import ROBOT_MODELS
     from .page import render_page
     from .scene_data import read_source, world_data
 
@@ -95,8 +119,9 @@ def validate_page(result: Result, model_paths=()) -> bytes | None:
         source = read_source(path, model_paths)
     except WorldgenError:
         return None
+    known = result.robot in ROBOT_MODELS or Path(result.robot).is_file()   # a model, or --robot FILE
     source = dataclasses.replace(source, spawn=result.spawn or source.spawn,
-                                 robot=result.robot if result.robot in ("burger", "waffle", "waffle_pi") else source.robot)
+                                 robot=result.robot if known else source.robot)
     return render_page(world_data(source), title=result.name, subtitle=source.subtitle, back=BACK, **panel(result))
 
 

@@ -18,7 +18,7 @@ from __future__ import annotations
 import json
 import math
 import re
-from typing import Iterable
+from typing import Iterable, Sequence
 from urllib.parse import quote
 
 from ..check.report import Result, _clean
@@ -68,11 +68,12 @@ DIGITS = {"m": 2, "cm": 1, "s": 1, "%": 0}   # decimals shown per unit; numbers 
 
 # ------------------------------------------------------------------------------------------------------ rows
 
-def index_rows(results: Iterable[Result], hrefs: dict[str, str] | None = None) -> list[dict]:
+def index_rows(results: Iterable[Result], hrefs: dict[str, str] | Sequence[str | None] | None = None) -> list[dict]:
     """One row per result, in the given order.
 
     A row: ``name`` (:attr:`Result.name`), ``path``, ``verdict`` (``ok``/``warn``/``FAIL``), ``ok``, ``href``
-    (``hrefs[result.name]`` or ``hrefs[result.path]``, a relative file path, percent-encoded; None without one),
+    (``hrefs[result.name]`` or ``hrefs[result.path]``, or with a list ``hrefs[i]`` for the i-th result: a relative
+    file path, percent-encoded; None without one),
     ``kind`` (``run`` or ``validate``), ``task`` (a run's task, or None), ``metrics`` (a list of ``{"key",
     "label", "value", "unit", "text"}``: value a number, a string or None, text as shown), ``errors``,
     ``warnings``, ``notes`` (counts by severity), ``findings`` (``{"severity", "check", "message", "where",
@@ -80,9 +81,12 @@ def index_rows(results: Iterable[Result], hrefs: dict[str, str] | None = None) -
     """
     hrefs = hrefs or {}
     rows = []
-    for r in results:
+    for i, r in enumerate(results):
         run = bool(r.checks) and r.checks[0] in RUN_CHECKS
-        href = hrefs.get(r.name, hrefs.get(r.path))
+        if isinstance(hrefs, dict):
+            href = hrefs.get(r.name, hrefs.get(r.path))
+        else:   # one per result, in order: results of the same name (a file given twice) keep their own pages
+            href = hrefs[i] if i < len(hrefs) else None
         count = {s: sum(f.severity == s for f in r.findings) for s in ("error", "warning", "info")}
         rows.append({
             "name": r.name,

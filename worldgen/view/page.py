@@ -30,6 +30,14 @@ def _script_text(name: str, text: str) -> str:
     return text
 
 
+def require_three() -> None:
+    """Fail now (WorldgenError, one line) when this installation has no three.js: before a run whose page could
+    not be written after it."""
+    from .vendor import modules
+
+    modules()
+
+
 def _csp_hash(script: str) -> str:
     """The Content Security Policy source that lets exactly this inline script run (the page's loader)."""
     import base64

@@ -15,8 +15,8 @@ import math
 
 POSE_RATE = 10.0     # poses a second: smooth at 16×, with the page interpolating between them
 SCAN_RATE = 5.0      # scans a second: the LDS-01's own rate
-MAX_POSES = 6000     # 10 minutes at POSE_RATE
-MAX_SCANS = 300      # 60 s at SCAN_RATE
+MAX_POSES = 6001     # 10 minutes at POSE_RATE, both ends
+MAX_SCANS = 301      # a minute at SCAN_RATE, both ends
 
 
 def _r(value, digits: int = 3):
@@ -27,18 +27,28 @@ def _r(value, digits: int = 3):
 
 
 def thin(times: list[float], rate: float, limit: int) -> list[int]:
-    """Indices of ``times`` (sorted) at most ``rate`` a second and ``limit`` in all, the first and last kept."""
+    """Indices of ``times`` (sorted) for at most ``rate`` a second and ``limit`` in all: the sample nearest each
+    tick of a grid (``1/rate`` apart, or wider so that ``limit`` ticks span the run), and the last sample.
+    Rounding to the nearest tick, not flooring, keeps a sensor's own rate through its jitter."""
     if not times:
         return []
-    span = times[-1] - times[0]
-    step = max(1.0 / rate, span / max(1, limit))
-    kept, last = [0], times[0]
-    for i in range(1, len(times) - 1):
-        if times[i] - last >= step - 1e-9:
-            kept.append(i)
-            last = times[i]
-    if len(times) > 1:
-        kept.append(len(times) - 1)
+    limit = max(2, limit)
+    t0, span = times[0], times[-1] - times[0]
+    step = max(1.0 / rate, span / (limit - 1))
+    kept, tick, best = [], 0, 0   # best: the sample nearest the current tick so far
+    for i, t in enumerate(times):
+        nearest = math.floor((t - t0) / step + 0.5)
+        if nearest != tick:
+            kept.append(best)
+            tick, best = nearest, i
+        elif abs(t - t0 - tick * step) < abs(times[best] - t0 - tick * step):
+            best = i
+    kept.append(best)
+    if kept[-1] != len(times) - 1:
+        if len(kept) < limit:
+            kept.append(len(times) - 1)
+        else:
+            kept[-1] = len(times) - 1
     return kept
 
 
@@ -102,12 +112,13 @@ def drive_replay(result: dict, run: int = 0) -> dict:
     keep = thin(times, POSE_RATE, MAX_POSES)
     front = series.get("true") or [None] * len(times)
     command = series.get("v_cmd") or [0.0] * len(times)
-    omega = chosen.get("omega") if result.get("behaviour") == "spin" else 0.0
+    omega = series.get("w_cmd") or [0.0] * len(times)
     out = {"t": [_r(times[i]) for i in keep], "x": [_r(series["x"][i]) for i in keep],
            "y": [_r(series["y"][i]) for i in keep], "yaw": [_r(series["yaw"][i], 4) for i in keep],
-           "v": [_r(command[i]) for i in keep], "w": [_r(omega) for _ in keep], "d": [_r(front[i]) for i in keep]}
+           "v": [_r(command[i]) for i in keep], "w": [_r(omega[i]) for i in keep], "d": [_r(front[i]) for i in keep]}
     odom = [[times[i], series["x"][i], series["y"][i]] for i in range(len(times))]
-    out["contacts"] = contacts(chosen.get("contacts") or [], odom)
+    start = chosen.get("start_t", 0.0)   # contacts carry the session's time, the series the exercise's
+    out["contacts"] = contacts([dict(c, time=c["time"] - start) for c in chosen.get("contacts") or []], odom)
     rows = [[times[i], *row[:3], row[3]] for i, row in enumerate(series.get("scan") or []) if row is not None]
     scan = scans_data(result.get("lidar"), rows)
     if scan is not None:

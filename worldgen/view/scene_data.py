@@ -154,12 +154,23 @@ def shape_item(shape: Shape, group: str, meshes: list) -> dict | None:
         item["r"], item["l"] = r3(shape.radius), r3(shape.length)
     elif shape.kind == "sphere" and (shape.radius or 0) > 0:
         item["r"] = r3(shape.radius)
-    elif shape.kind == "mesh" and shape.vertices is not None and shape.faces is not None and len(shape.faces):
+    elif shape.kind == "mesh" and _valid_faces(shape):
         item["m"] = len(meshes)
         meshes.append(shape)
     else:
         return None
     return item
+
+
+def _valid_faces(shape: Shape) -> int:
+    """How many of a mesh's faces index its vertices (the rest are dropped)."""
+    import numpy as np
+
+    if shape.vertices is None or shape.faces is None:
+        return 0
+    count = len(np.asarray(shape.vertices).reshape(-1, 3))
+    faces = np.asarray(shape.faces).reshape(-1, 3)
+    return int(((faces >= 0) & (faces < count)).all(axis=1).sum())
 
 
 def meshes_glb(shapes: list[Shape]) -> str:
@@ -279,15 +290,16 @@ def openings(source: WorldSource) -> list[dict]:
     return out
 
 
-def bounds(source: WorldSource, plan_geometry: list, spawn) -> list[float]:
-    """xmin, ymin, xmax, ymax of the plan, the floor markings and the spawn (2 m around the origin when empty)."""
+def bounds(source: WorldSource, plan_geometry: list, spawns) -> list[float]:
+    """xmin, ymin, xmax, ymax of the plan, the floor markings and the robots' spawns (None: none; 2 m around the
+    origin when empty)."""
     from ..geometry.markings import floor_markings, footprint
 
     boxes = [g.bounds for g in plan_geometry]
     for marking in floor_markings(source.scene):
         for shape in marking.shapes:
             boxes.append(footprint(shape).bounds)
-    if spawn is not None:
+    for spawn in (s for s in spawns if s is not None):
         boxes.append((spawn[0] - 0.3, spawn[1] - 0.3, spawn[0] + 0.3, spawn[1] + 0.3))
     if not boxes:
         return [-1.0, -1.0, 1.0, 1.0]
@@ -360,7 +372,7 @@ def world_data(source: WorldSource, rays=None) -> dict:
     items = world_items(source, meshes)
     cut = plan(source)
     geometry = cut.pop("_geometry")
-    box = bounds(source, geometry, source.spawn)
+    box = bounds(source, geometry, [source.spawn, *(pose for _, _, pose in source.others)])
     data = {"title": source.title, "subtitle": source.subtitle, "items": items, "plan": cut,
             "openings": openings(source), "bounds": box, "floor": floor(source, box),
             "robot": robot_data(source.robot, source.spawn)}
