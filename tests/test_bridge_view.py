@@ -24,12 +24,18 @@ def _data(page_file) -> dict:
     return json.loads(lxml_html.fromstring(page_file.read_bytes()).get_element_by_id("worldgen-data").text)
 
 
-def test_a_real_run_is_replayed_where_the_robot_went(chromium, tmp_path, monkeypatch):
+@pytest.fixture()
+def course(tmp_path, monkeypatch):
+    """The class's packages, in a test whose ROS processes carry a tag of their own (none may be left over)."""
     need_ros()
     tag = f"WORLDGEN_TEST_TAG={uuid.uuid4().hex}"
     monkeypatch.setenv(*tag.split("="))
     monkeypatch.setenv("ROS_HOME", str(tmp_path / "ros_home"))
-    course = write_course(tmp_path / "course")
+    yield write_course(tmp_path / "course")
+    no_leftovers(tag)
+
+
+def test_a_real_run_is_replayed_where_the_robot_went(chromium, tmp_path, course):
     node = course / "lab_a_stop_at_wall" / "scripts" / "stop_at_wall.py"
     page_file = tmp_path / "run.html"
     result = CliRunner().invoke(main, ["run", str(EXAMPLES / "enclosed_room.yaml"), str(node), "--task",
@@ -56,15 +62,9 @@ def test_a_real_run_is_replayed_where_the_robot_went(chromium, tmp_path, monkeyp
         end = page.evaluate("window.worldgen.robot()")
         assert (end["x"], end["y"]) == pytest.approx(tuple(final[:2]), abs=0.01)
         assert probe.console_errors == [] and probe.left_file == []
-    no_leftovers(tag)
 
 
-def test_a_graded_class_has_an_index_with_every_verdict(chromium, tmp_path, monkeypatch):
-    need_ros()
-    tag = f"WORLDGEN_TEST_TAG={uuid.uuid4().hex}"
-    monkeypatch.setenv(*tag.split("="))
-    monkeypatch.setenv("ROS_HOME", str(tmp_path / "ros_home"))
-    course = write_course(tmp_path / "course")
+def test_a_graded_class_has_an_index_with_every_verdict(chromium, tmp_path, course):
     subs = tmp_path / "submissions"
     runner = CliRunner()
     for name in ("alice", "bob", "carol"):
@@ -96,4 +96,3 @@ def test_a_graded_class_has_an_index_with_every_verdict(chromium, tmp_path, monk
         probe.page.click("a.back")   # back to the class
         probe.page.wait_for_selector("tr[data-name]")
         assert probe.console_errors == [] and probe.left_file == []
-    no_leftovers(tag)

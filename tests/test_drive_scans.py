@@ -5,30 +5,12 @@ from __future__ import annotations
 
 import json
 import math
-import textwrap
 
 import pytest
 
 from worldgen.sim.lidar import Scan, scan_row
 
-ROOM = textwrap.dedent("""\
-    <?xml version="1.0"?>
-    <sdf version="1.6">
-      <world name="default">
-        <model name="room">
-          <static>1</static>
-          <link name="Wall_0"><pose>1.5 0 1 0 0 0</pose>
-            <collision name="c"><geometry><box><size>0.15 3 2</size></box></geometry></collision></link>
-          <link name="Wall_1"><pose>-1.5 0 1 0 0 0</pose>
-            <collision name="c"><geometry><box><size>0.15 3 2</size></box></geometry></collision></link>
-          <link name="Wall_2"><pose>0 1.5 1 0 0 0</pose>
-            <collision name="c"><geometry><box><size>3 0.15 2</size></box></geometry></collision></link>
-          <link name="Wall_3"><pose>0 -1.5 1 0 0 0</pose>
-            <collision name="c"><geometry><box><size>3 0.15 2</size></box></geometry></collision></link>
-        </model>
-      </world>
-    </sdf>
-    """)
+from test_drive import ROOM   # the same 3 × 3 m room of four walls
 FACE = 1.5 - 0.075    # the walls' inner faces
 SCAN_X = -0.032       # base_scan in base_footprint (burger)
 SPAWN = [-0.5, 0.0, 0.0]
