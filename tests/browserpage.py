@@ -1,9 +1,10 @@
-"""Helpers for the tests of the 3D pages: Debian's chromium, headless, driven by Playwright, and a probe of what a
-page did once opened (errors on its console, requests that tried to leave the file it was opened from).
+"""Helpers for the tests of the 3D pages: Debian's chromium, headless, driven by Playwright, and a probe of what a page
+did once opened (errors on its console, requests that tried to leave the file it was opened from).
 
 The fixture ``chromium`` is one for the whole session (tests/conftest.py imports it, so that every module shares the
-one browser: Playwright's sync API runs one instance at a time); test modules import ``open_page``. The fixture skips when /usr/bin/chromium (Debian's ``chromium`` package) or Playwright (the ``browser`` extra, Python
-3.9+) is not installed. Playwright's own browsers are never used nor downloaded.
+one browser: Playwright's sync API runs one instance at a time); test modules import ``open_page``. The fixture
+skips when /usr/bin/chromium (Debian's ``chromium`` package) or Playwright (the ``browser`` extra, Python 3.9+) is
+not installed. Playwright's own browsers are never used nor downloaded.
 """
 
 from __future__ import annotations

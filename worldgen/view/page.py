@@ -2,13 +2,14 @@
 and the data it draws (:mod:`.scene_data`, and for a run :mod:`.replay`). Opening it loads nothing from anywhere:
 every script is inlined as text and linked through ``blob:`` URLs by a small loader (``templates/view/boot.js``).
 
-The same inputs give the same bytes: the data is JSON with sorted-free, rounded values written in a fixed order,
-and nothing in the page depends on the time or the machine it was written on.
+The same inputs give the same bytes: the data is JSON of rounded values in a fixed order, and nothing in the page
+depends on the time or the machine it was written on.
 """
 
 from __future__ import annotations
 
 import json
+import math
 import re
 from pathlib import Path
 from typing import Sequence
@@ -86,7 +87,8 @@ def render_page(data: dict, *, title: str, subtitle: str = "", findings: Sequenc
     replay = data.get("replay")
     html = render_template(
         "view/page.html.j2", title=title, subtitle=subtitle, css=Markup(_template_text("page.css")),
-        data_json=Markup(data_json(data)), libraries=code, app=Markup(_script_text("page.js", _template_text("page.js"))),
+        data_json=Markup(data_json(data)), libraries=code,
+        app=Markup(_script_text("page.js", _template_text("page.js"))),
         boot=Markup(boot), boot_hash=_csp_hash(f"\n{boot}\n"), three_version=THREE_VERSION,
         three_license=Markup(_script_text("LICENSE", libraries["LICENSE"])), replay=replay is not None,
         replay_duration=(replay["t"][-1] if replay and replay["t"] else 0), rays="rays" in data or replay is not None,
@@ -124,7 +126,7 @@ def world_facts(data: dict) -> list[tuple[str, str]]:
     x0, y0, x1, y1 = data["bounds"]
     groups = [item["g"] for item in data["items"]]
     facts = [("size", f"{x1 - x0:.2f} × {y1 - y0:.2f} m")]
-    for group, label in (("wall", "wall shapes"), ("obstacle", "obstacle shapes"), ("marking", "floor markings")):
+    for group, label in (("wall", "wall shapes"), ("obstacle", "obstacle shapes"), ("marking", "floor-marking pieces")):
         if group in groups:
             facts.append((label, str(groups.count(group))))
     for kind in ("door", "window"):
@@ -135,7 +137,7 @@ def world_facts(data: dict) -> list[tuple[str, str]]:
     robot = data["robot"]
     if robot["spawn"] is not None:
         x, y, yaw = robot["spawn"]
-        facts.append((robot["model"], f"({x:.2f}, {y:.2f}), yaw {yaw * 57.29578:.0f}°"))
+        facts.append((robot["model"], f"({x:.2f}, {y:.2f}), yaw {math.degrees(yaw):.0f}°"))
     return facts
 
 
@@ -188,7 +190,8 @@ def drive_page(world: str | Path, result: dict, model_paths: Sequence[str | Path
     source = dataclasses.replace(read_source(world, model_paths), spawn=tuple(result["spawn"]), robot=result["robot"])
     run = result["runs"][0]
     if result["behaviour"] == "spin":
-        metrics = [("turned", f"{run['turned'] * 57.29578:.0f}°"), ("drift at the end", f"{run['drift'] * 1000:.1f} mm"),
+        metrics = [("turned", f"{math.degrees(run['turned']):.0f}°"),
+                   ("drift at the end", f"{run['drift'] * 1000:.1f} mm"),
                    ("largest drift", f"{run['max_drift'] * 1000:.1f} mm")]
     else:
         metrics = [(label, "–" if run.get(key) is None else f"{run[key]:.3f} {unit}".strip())
