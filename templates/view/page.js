@@ -274,8 +274,10 @@ class WorldView {
       this.ortho.zoom = 1;
       this.controls.target.set(this.centre.x, this.centre.y, 0);
       this.controls.enableRotate = false;
+      this.controls.mouseButtons.LEFT = THREE.MOUSE.PAN;   // a plan is dragged, not turned
     } else {
       this.controls.enableRotate = true;
+      this.controls.mouseButtons.LEFT = THREE.MOUSE.ROTATE;
       this.home();
     }
     this.resize();

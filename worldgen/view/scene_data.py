@@ -112,8 +112,7 @@ def _launch_source(path: Path, model_paths) -> WorldSource:
     robot = info.model if info.model in ROBOT_MODELS else "burger"
     others = tuple((r.ns, r.robot if r.robot in ROBOT_MODELS else robot, _pose3(r.pose))
                    for r in info.robots[1:] if r.pose is not None)
-    return dataclasses.replace(source, subtitle=f"{path.name} → {Path(info.world_path).name}",
-                               spawn=_pose3(info.robots[0].pose) if info.robots and info.robots[0].pose else spawn,
+    return dataclasses.replace(source, subtitle=f"{path.name} → {Path(info.world_path).name}", spawn=spawn,
                                robot=robot, others=others)
 
 
