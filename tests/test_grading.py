@@ -241,7 +241,7 @@ def test_drive_in_a_folder_drives_each_launch_files_world_from_its_spawn(submiss
     assert ben["spawn"] == [-7.5, 3.3, 0.0]
     assert cara["ok"] is False and "cannot be found" in cara["error"]
     refused = cli("drive", submissions, "--plot", submissions.parent / "steps.png")
-    assert refused.exit_code == 2 and "--plot and --csv take a single world" in refused.output
+    assert refused.exit_code == 2 and "--plot, --csv and --html take a single world" in refused.output
 
 
 # ------------------------------------------------------------------------------------------ the README says so
