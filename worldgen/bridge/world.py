@@ -73,13 +73,11 @@ def load_world(path: str | Path, *, spawn=None, robot: str | None = None, launch
 
 
 def _from_launch(path: Path, need_world: bool = True):
+    from ..core.spawnpose import plan_pose
     from ..ros.launch_reader import read_launch
 
     info = read_launch(path)
-    spawn = None
-    if info.spawn is not None:
-        values = list(info.spawn) + [0.0] * (4 - len(info.spawn))
-        spawn = (float(values[0]), float(values[1]), float(values[3]))
+    spawn = plan_pose(info.spawn)
     world = info.world_path
     if need_world and (world is None or not Path(world).is_file()):
         raise WorldFileError(f"the world this launch file starts cannot be found: {info.world_ref or '(none)'}",

@@ -32,6 +32,7 @@ from .checks import (GEOMETRIC_CHECKS, SDFORMAT_ABSENT, SIM_CHECKS, check_enclos
                      check_spawn_clear, check_sdformat, floor_under, robot_body, sim_findings)
 from ..core.errors import InputError, SpecError, WorldFileError
 from ..core.inputs import check_regular
+from ..core.spawnpose import plan_pose
 from ..core.findings import Finding
 from .report import Result
 from ..spec.load import spec_beside
@@ -225,14 +226,6 @@ def _package_findings(folder: Path) -> list[Finding]:
             for f in check_package(folder)]
 
 
-def _pose3(pose) -> tuple[float, float, float] | None:
-    """A launch pose (x, y, z, yaw) → (x, y, yaw)."""
-    if pose is None:
-        return None
-    values = list(pose) + [0.0] * (4 - len(pose))
-    return (float(values[0]), float(values[1]), float(values[3]))
-
-
 def _launch_path_job(path: Path, display: str) -> Job:
     """The job of a launch file given as an input: one that roslaunch could not parse either is a failed
     ``launch`` check, not bad input."""
@@ -267,7 +260,7 @@ def _launch_job(path: Path, info, display: str) -> Job:
 
 
 def _take_launch_pose(job: Job, info, path: Path) -> None:
-    pose = _pose3(info.spawn)
+    pose = plan_pose(info.spawn)
     if pose is not None:
         job.spawn, job.spawn_source = pose, f"from launch file {path}"
     if info.model in ROBOT_MODELS:

@@ -38,3 +38,11 @@ def parse_spawn(text: str) -> tuple[float, float, float]:
 def floor_pose(spawn: tuple[float, float, float]) -> Pose:
     """(x, y, yaw) → the (x, y, z, yaw) a launch file writes: z 0, on the floor."""
     return (spawn[0], spawn[1], 0.0, spawn[2])
+
+
+def plan_pose(pose) -> tuple[float, float, float] | None:
+    """A launch file's pose (x, y, z, yaw; missing values 0) → (x, y, yaw); None stays None."""
+    if pose is None:
+        return None
+    values = list(pose) + [0.0] * (4 - len(pose))
+    return (float(values[0]), float(values[1]), float(values[3]))

@@ -100,6 +100,7 @@ def _launch_source(path: Path, model_paths) -> WorldSource:
     import dataclasses
 
     from ..core.errors import InputError
+    from ..core.spawnpose import plan_pose
     from ..ros.launch_reader import read_launch
     from ..spec.model import ROBOT_MODELS
 
@@ -108,18 +109,13 @@ def _launch_source(path: Path, model_paths) -> WorldSource:
         raise InputError(f"the world this launch file starts cannot be found: {info.world_ref or '(none)'}",
                          path=path, hint="make its world_name an existing world file, or view the world itself")
     source = _world_source(Path(info.world_path), model_paths)
-    spawn = _pose3(info.spawn) if info.spawn is not None else None
+    spawn = plan_pose(info.spawn)
     robot = info.model if info.model in ROBOT_MODELS else "burger"
-    others = tuple((r.ns, r.robot if r.robot in ROBOT_MODELS else robot, _pose3(r.pose))
+    others = tuple((r.ns, r.robot if r.robot in ROBOT_MODELS else robot, plan_pose(r.pose))
                    for r in info.robots[1:] if r.pose is not None)
     return dataclasses.replace(source, subtitle=f"{path.name} → {Path(info.world_path).name}", spawn=spawn,
                                robot=robot, others=others)
 
-
-def _pose3(pose) -> tuple[float, float, float]:
-    """A launch file's pose (x, y, z, yaw) as (x, y, yaw)."""
-    values = list(pose) + [0.0] * (4 - len(pose))
-    return (float(values[0]), float(values[1]), float(values[3]))
 
 
 # ------------------------------------------------------------------------------------------------ the data
