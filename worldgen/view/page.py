@@ -104,7 +104,7 @@ def world_page(path: str | Path, *, spawn: tuple[float, float, float] | None = N
     import dataclasses
 
     from ..core.errors import InputError
-    from .scene_data import read_source, scan_rays, world_data
+    from .scene_data import read_source, world_data
 
     source = read_source(path, model_paths)
     if spawn is not None:
@@ -119,6 +119,15 @@ def world_page(path: str | Path, *, spawn: tuple[float, float, float] | None = N
     data = world_data(source, rays)
     return render_page(data, title=source.title, subtitle=source.subtitle, findings=_scene_findings(source.scene),
                        metrics=world_facts(data))
+
+
+def scan_rays(source, model_paths=(), timeout: float = 120.0) -> list:
+    """One noiseless LiDAR scan from ``source``'s spawn pose (``preview``'s job, in a simulator child process)."""
+    from .preview import Picture, Spawn, lidar_rays
+
+    spawn = Spawn(*source.spawn, model=source.robot)
+    picture = Picture(source.scene, source.title, world_path=source.world_path, world_text=source.world_text)
+    return lidar_rays(picture, spawn, model_paths, timeout)
 
 
 def world_facts(data: dict) -> list[tuple[str, str]]:

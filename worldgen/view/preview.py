@@ -17,7 +17,6 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Sequence, Tuple
 
-from ..spec.grid import POST_PREFIX
 from ..core.scene import Scene
 from ..spec.load import load_spec
 from ..spec.model import SPEC_SUFFIXES, Spec
@@ -73,19 +72,15 @@ def is_spec_path(path: str | Path) -> bool:
 
 
 def spec_picture(spec: Spec) -> Picture:
-    """A spec's picture: its geometry written as SDF and read back, plus its openings and spawn pose."""
-    from ..geometry.building import build_geometry
-    from ..sdf.reader import read_world_text
-    from ..sdf.writer import world_sdf
+    """A spec's picture: its geometry written as SDF and read back (:func:`.scene_data.spec_source`), plus its
+    openings and spawn pose."""
+    from .scene_data import spec_source
 
-    building = build_geometry(spec)
-    text = world_sdf(building)
-    scene = read_world_text(text, source=spec.source)
-    spawn = Spawn(spec.robot.at[0], spec.robot.at[1], spec.robot.yaw, spec.robot.model) if spec.robot else None
-    walls = frozenset(s.label for s in scene.shapes
-                      if s.model == building.name or s.model.startswith(POST_PREFIX))   # a grid's posts are walls
-    return Picture(scene, spec.name, _short(Path(spec.source).name) if spec.source else "",
-                   opening_marks(building), spawn, walls, world_text=text)
+    source = spec_source(spec)
+    spawn = Spawn(*source.spawn, spec.robot.model) if spec.robot else None
+    walls = frozenset(s.label for s in source.scene.shapes if s.model in source.walls)
+    return Picture(source.scene, spec.name, _short(Path(spec.source).name) if spec.source else "",
+                   opening_marks(source.building), spawn, walls, world_text=source.world_text)
 
 
 def opening_marks(building) -> tuple[Mark, ...]:

@@ -62,19 +62,25 @@ def read_source(path: str | Path, model_paths: Sequence[str | Path] = ()) -> Wor
 
 
 def _spec_source(path: Path, model_paths) -> WorldSource:
+    from ..spec.load import load_spec
+
+    return spec_source(load_spec(path), model_paths, path.name)
+
+
+def spec_source(spec, model_paths=(), subtitle: str = "") -> WorldSource:
+    """A spec's world as ``worldgen build`` writes it (spec → geometry → SDF text → the reader), with the spec,
+    its building, its robot's pose and its walls (the building and an ASCII grid's posts)."""
     from ..geometry.building import build_geometry
     from ..sdf.reader import read_world_text
     from ..sdf.writer import world_sdf
     from ..spec.grid import POST_PREFIX
-    from ..spec.load import load_spec
 
-    spec = load_spec(path)
     building = build_geometry(spec)
     text = world_sdf(building)
-    scene = read_world_text(text, source=spec.source or path, model_paths=tuple(model_paths))
+    scene = read_world_text(text, source=spec.source, model_paths=tuple(model_paths))
     spawn = (spec.robot.at[0], spec.robot.at[1], spec.robot.yaw) if spec.robot else None
     walls = frozenset(m for m in scene.models if m == building.name or m.startswith(POST_PREFIX))
-    return WorldSource(scene, spec.name, path.name, spawn, spec.robot.model if spec.robot else "burger", spec,
+    return WorldSource(scene, spec.name, subtitle, spawn, spec.robot.model if spec.robot else "burger", spec,
                        building, world_text=text, walls=walls)
 
 
@@ -378,13 +384,4 @@ def world_data(source: WorldSource, rays=None) -> dict:
     if rays:
         data["rays"] = rays_data(rays)
     return data
-
-
-def scan_rays(source: WorldSource, model_paths=(), timeout: float = 120.0) -> list:
-    """One noiseless LiDAR scan from the spawn pose (``preview``'s job, in a simulator child process)."""
-    from .preview import Picture, Spawn, lidar_rays
-
-    spawn = Spawn(*source.spawn, model=source.robot)
-    picture = Picture(source.scene, source.title, world_path=source.world_path, world_text=source.world_text)
-    return lidar_rays(picture, spawn, model_paths, timeout)
 
