@@ -70,7 +70,7 @@ def real_time_factor(tmp: Path) -> float:
 
 
 def class_room_stop_at_wall(tmp: Path) -> tuple[float, bool, str]:
-    from worldgen.ros.course import write_course
+    from worldgen.packages.course_ros1 import write_course
 
     node = write_course(tmp / "ws") / "lab_a_stop_at_wall" / "scripts" / "stop_at_wall.py"
     world, spawn = (CLASS_ROOM, ["--spawn", "-4.905,-1.415,0"]) if CLASS_ROOM.is_file() else (ROOM, [])

@@ -13,7 +13,7 @@ from conftest import CliRunner
 
 from bridgetools import NODES, need_ros, no_leftovers
 from worldgen.cli import main
-from worldgen.ros.course import write_course
+from worldgen.packages.course_ros1 import write_course
 
 
 def test_a_folder_of_submissions_is_graded(tmp_path, monkeypatch):

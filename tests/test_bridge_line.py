@@ -15,7 +15,7 @@ from conftest import CliRunner
 from bridgetools import NODES, REPO, need_ros, no_leftovers
 from rosstubs import need_module
 from worldgen.cli import main
-from worldgen.ros.course import write_course
+from worldgen.packages.course_ros1 import write_course
 
 TRACK = REPO / "examples" / "line_track.yaml"
 

@@ -21,7 +21,7 @@ from conftest import CliRunner
 from rosstubs import SYSTEM_PYTHON
 from bridgetools import NODES, REPO, ROOM, leftovers, need_ros, no_leftovers, tag  # noqa: F401 (a fixture)
 from worldgen.cli import main
-from worldgen.ros.course import write_course
+from worldgen.packages.course_ros1 import write_course
 
 
 @pytest.fixture(scope="module")

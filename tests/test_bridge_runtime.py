@@ -21,7 +21,7 @@ from bridgetools import (NODES, ROOM, leftovers, need_ros, no_leftovers, ros_env
                          worldgen)
 from rosstubs import SYSTEM_PYTHON, need_module
 from worldgen.cli import main
-from worldgen.ros.runtime import provider
+from worldgen.runtime.table import provider
 
 ABSENT_CANDIDATES = ("sklearn", "pandas", "serial", "pygame")   # in the table, not in the class runtime
 

@@ -17,7 +17,7 @@ from browserpage import open_page
 from conftest import EXAMPLES, REPO, CliRunner
 from viewpixels import wait_ready
 from worldgen.cli import main
-from worldgen.ros.course import write_course
+from worldgen.packages.course_ros1 import write_course
 
 
 def _data(page_file) -> dict:

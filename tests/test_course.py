@@ -12,9 +12,9 @@ from conftest import CliRunner
 
 from conftest import EXAMPLES
 from worldgen.cli import main
-from worldgen.ros.course import write_course
-from worldgen.ros.launch_reader import read_launch
-from worldgen.ros.package_check import check_package
+from worldgen.packages.course_ros1 import write_course
+from worldgen.launch.reader import read_launch
+from worldgen.packages.check import check_package
 
 PACKAGES = ["class_meeting_02_custom_gazebo_world", "intro_robo", "lab_a_spin_circles", "lab_a_stop_at_wall",
             "lab_b_line_follower"]
@@ -79,7 +79,7 @@ def test_the_line_lab_starts_a_waffle_pi_on_its_tape(course, tmp_path):
 def test_the_course_world_is_the_built_example(course, tmp_path):
     """The course builds its world from examples/enclosed_room.yaml (shipped in the wheel as worldgen/examples):
     byte for byte the world `worldgen build examples/enclosed_room.yaml` writes, the robot in its middle."""
-    from worldgen.ros.scaffold import world_from_spec
+    from worldgen.packages.catkin import world_from_spec
 
     example = EXAMPLES / "enclosed_room.yaml"
     built = CliRunner().invoke(main, ["build", str(example), "-o", str(tmp_path)])

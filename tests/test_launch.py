@@ -13,8 +13,8 @@ from lxml import etree
 from worldgen.cli import main
 from worldgen.core.errors import InputError, WorldFileError
 from worldgen.core.numbers import format_number
-from worldgen.ros.launch import launch_xml, parse_node
-from worldgen.ros.launch_reader import read_launch
+from worldgen.launch.writer_xml import launch_xml, parse_node
+from worldgen.launch.reader import read_launch
 from worldgen.core.spawnpose import parse_spawn
 from worldgen.geometry.placement import spawn_problem, world_rooms
 
@@ -109,7 +109,7 @@ def test_numbers_nodes_and_spawn_values():
 def test_default_spawn_is_the_middle_of_the_class_room(corpus, tmp_path):
     """The class's saved world: the room's walls, moved by the <state> block, are centred on (-4.907, -1.411);
     the deepest free point of a square room is its centre."""
-    from worldgen.ros.spawn import spawn_for_world
+    from worldgen.launch.spawn import spawn_for_world
 
     world = tmp_path / "room.world"
     shutil.copy(corpus / ENCLOSED, world)
@@ -147,7 +147,7 @@ def test_spawn_comes_from_the_spec_beside_the_world(corpus, tmp_path):
     shutil.copy(corpus / ENCLOSED, world)
     (tmp_path / "room.yaml").write_text("name: room\nrooms:\n  - name: a\n    rect: {center: [0, 0], size: [5, 5]}\n"
                                         "robot: {model: burger, at: [-5.5, -1.0], yaw: 1.5}\n")
-    from worldgen.ros.spawn import spawn_for_world
+    from worldgen.launch.spawn import spawn_for_world
 
     assert spawn_for_world(world) == ((-5.5, -1.0, 0.0, 1.5), "spec")
     (tmp_path / "room.yaml").write_text((tmp_path / "room.yaml").read_text().replace("-5.5", "5.5"))

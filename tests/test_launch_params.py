@@ -10,8 +10,8 @@ from pathlib import Path
 import pytest
 
 from rosstubs import need_module, roslaunch_load, ros_env
-from worldgen.ros.launch_params import ParamError, param_name, rosparam_sets, set_value, typed_value
-from worldgen.ros.launch_reader import read_launch
+from worldgen.launch.params_xml import ParamError, param_name, rosparam_sets, set_value, typed_value
+from worldgen.launch.reader import read_launch
 
 
 @pytest.mark.parametrize("text, kind, expected", [
@@ -55,7 +55,7 @@ def test_rosparam_documents_and_later_values():
     ("!radians pi/2", math.pi / 2), ("!degrees 90", math.pi / 2), ("!degrees deg(90)", math.pi / 2),
     ("rad(pi/4)", math.pi / 4), ("deg(-180)", -math.pi), ("!radians -2*pi/3 + 1", 1 - 2 * math.pi / 3)])
 def test_angles_read_as_rosparam_reads_them(text, expected):
-    from worldgen.ros.launch_params import load_yaml
+    from worldgen.launch.params_xml import load_yaml
 
     assert load_yaml(f"a: {text}")["a"] == pytest.approx(expected)
 
@@ -67,7 +67,7 @@ def test_angles_read_as_rosparam_reads_them(text, expected):
                                              for a, b in zip("abcde", "bcdef")), "more than 200,000 values"),
 ])
 def test_a_hostile_rosparam_document_is_refused_quickly(text, message):
-    from worldgen.ros.launch_params import load_yaml
+    from worldgen.launch.params_xml import load_yaml
 
     with pytest.raises(ParamError, match=message):
         load_yaml(text)
@@ -76,7 +76,7 @@ def test_a_hostile_rosparam_document_is_refused_quickly(text, message):
 def test_what_the_master_cannot_hold_is_said():
     import datetime
 
-    from worldgen.ros.launch_params import storable
+    from worldgen.launch.params_xml import storable
 
     assert "not a string" in storable({1: 0.5})
     assert "date" in storable({"when": datetime.date(2001, 1, 1)})

@@ -13,8 +13,8 @@ import pytest
 from ros2pkgs import (cmake_package, declared_pose_launch, humble_launch, jazzy_spawn_launch, jazzy_world_launch,
                       looped_launch, python_package, room_sdf, unfollowed_call_launch, write)
 from worldgen.core.errors import WorldFileError
-from worldgen.ros.launch_py_gazebo import command_kind, gazebo_world, gz_world, robot_model
-from worldgen.ros.launch_reader import is_python_launch, nothing_to_simulate, read_launch
+from worldgen.launch.gazebo_py import command_kind, gazebo_world, gz_world, robot_model
+from worldgen.launch.reader import is_python_launch, nothing_to_simulate, read_launch
 
 HEADER = """
     import os
@@ -389,7 +389,7 @@ def test_gz_and_gazebo_command_lines():
 
 @pytest.mark.parametrize("ros, world", [("humble", "room.world"), ("jazzy", "room.sdf")])
 def test_the_reader_reads_what_worldgens_ros2_launch_writer_writes(ws, ros, world):
-    writer = pytest.importorskip("worldgen.ros.launch_py")
+    writer = pytest.importorskip("worldgen.launch.writer_py")
     write(ws / "room_humble" / "worlds" / "room.sdf", room_sdf(version="1.8", gz_sim=True))
     text = writer.launch_py(world, "room_humble", ros, model="optenv", spawn=(1.25, -0.5, 0.0, 1.5708))
     launch = ws / "room_humble" / "launch" / "written.launch.py"

@@ -17,7 +17,7 @@ from conftest import REPO, CliRunner
 from worldgen.cli import main
 from worldgen.core import inputs
 from worldgen.geometry import enclosure, growth, slices
-from worldgen.ros import pyvalues
+from worldgen.pyread import values as pyvalues
 from worldgen.sdf import includes
 from worldgen.spec import maps, model, nodes
 

@@ -12,10 +12,10 @@ from conftest import EXAMPLES, CliRunner
 
 from worldgen.cli import main
 from worldgen.core.errors import InputError
-from worldgen.ros.gz_bridge_params import bridge_yaml
-from worldgen.ros.launch import parse_node
-from worldgen.ros.launch_py import launch_py
-from worldgen.ros.targets import cmd_vel_type
+from worldgen.launch.gz_bridge_params import bridge_yaml
+from worldgen.launch.writer_xml import parse_node
+from worldgen.launch.writer_py import launch_py
+from worldgen.launch.targets import cmd_vel_type
 
 # ------------------------------------------------------------------ a small reader of our launch files (ast)
 

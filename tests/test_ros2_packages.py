@@ -16,8 +16,8 @@ import pytest
 from conftest import EXAMPLES, CliRunner
 
 from worldgen.cli import main
-from worldgen.ros.ament import python_str
-from worldgen.ros.course2 import write_course2
+from worldgen.packages.ament import python_str
+from worldgen.packages.course_ros2 import write_course_ros2
 
 LABS = ["lab_a_spin_circles", "lab_a_stop_at_wall"]
 WORLD_PACKAGE = "class_meeting_02_custom_gazebo_world"
@@ -121,7 +121,7 @@ def test_long_python_strings_are_split_at_spaces():
 
 @pytest.fixture(scope="module", params=["humble", "jazzy"])
 def course(request, tmp_path_factory):
-    return request.param, write_course2(tmp_path_factory.mktemp(request.param), request.param)
+    return request.param, write_course_ros2(tmp_path_factory.mktemp(request.param), request.param)
 
 
 def test_course_layout_and_manifests(course):
@@ -150,7 +150,7 @@ def test_course_layout_and_manifests(course):
 
 def test_course_is_deterministic_and_all_or_nothing(course, tmp_path):
     ros, root = course
-    again = write_course2(tmp_path, ros)
+    again = write_course_ros2(tmp_path, ros)
     assert tree(again) == tree(root)
     runner = CliRunner()
     refused = runner.invoke(main, ["course", "--ros", ros, "--workspace", str(tmp_path)])
@@ -161,7 +161,7 @@ def test_course_is_deterministic_and_all_or_nothing(course, tmp_path):
 
 
 def test_jazzy_twist_course_publishes_twist(tmp_path):
-    root = write_course2(tmp_path, "jazzy", cmd_vel="twist")
+    root = write_course_ros2(tmp_path, "jazzy", cmd_vel="twist")
     node = (root / "lab_a_stop_at_wall" / "lab_a_stop_at_wall" / "stop_at_wall.py").read_text()
     assert "from geometry_msgs.msg import Twist\n" in node and "TwistStamped" not in node
     assert '"geometry_msgs/msg/Twist"' in (root / WORLD_PACKAGE / "params" / "turtlebot3_bridge.yaml").read_text()
@@ -303,7 +303,7 @@ def colcon() -> str:
 @pytest.mark.parametrize("ros", ["humble", "jazzy"])
 def test_colcon_builds_the_workspace(ros, tmp_path):
     tool = colcon()
-    write_course2(tmp_path, ros)
+    write_course_ros2(tmp_path, ros)
     assert CliRunner().invoke(main, ["scaffold", "my_lab", "rclpy", "--ros", ros, "-p", str(tmp_path / "src"),
                                      "--world", str(EXAMPLES / "enclosed_room.yaml")]).exit_code == 0
     build = subprocess.run([tool, "build", "--event-handlers", "console_direct-"], cwd=tmp_path,

@@ -18,9 +18,9 @@ from conftest import CliRunner
 from rosstubs import (SCAN_DRIVER, SYSTEM_PYTHON, TWIST_ECHO, make_stub_packages, need, need_module, roslaunch_load,
                       ros_env, start_roscore, stop_process)
 from worldgen.cli import main
-from worldgen.ros.course import write_course
+from worldgen.packages.course_ros1 import write_course
 from worldgen.core.numbers import format_number
-from worldgen.ros.launch_reader import read_launch
+from worldgen.launch.reader import read_launch
 
 ENCLOSED = "worlds/Intro-Robotics-UChicago-Spring-2022__warmup_project__worlds_turtlebot3_in_enclosed_room.world"
 

@@ -21,9 +21,9 @@ import pytest
 
 from conftest import REPO, CliRunner
 from worldgen.cli import main
-from worldgen.ros.node_imports import read_source
-from worldgen.ros.runtime import CLASS_RUNTIME, TABLE, install_hint, provider, runtime_modules
-from worldgen.ros.runtime_check import findings, survey
+from worldgen.runtime.imports import read_source
+from worldgen.runtime.table import CLASS_RUNTIME, TABLE, install_hint, provider, runtime_modules
+from worldgen.runtime.check import findings, survey
 
 ABSENT_CANDIDATES = ("sklearn", "pandas", "serial", "pygame", "sympy")   # in the table, not in the class runtime
 
@@ -286,7 +286,7 @@ def test_the_workspaces_own_unbuilt_python_is_a_build_finding(tmp_path):
 
 
 def test_one_child_process_answers_for_forty_submissions(tmp_path, monkeypatch):
-    import worldgen.ros.runtime_check as runtime_check
+    import worldgen.runtime.check as runtime_check
 
     calls = []
     real_run = subprocess.run

@@ -12,8 +12,8 @@ from conftest import CliRunner
 from rosstubs import need, ros_env
 from worldgen.cli import main
 from worldgen.core.errors import InputError
-from worldgen.ros.package_check import check_package
-from worldgen.ros.scaffold import package_request
+from worldgen.packages.check import check_package
+from worldgen.packages.catkin import package_request
 
 # catkin_create_pkg argument sets: plain class package, everything at once, no dependencies, messages, C++
 ARG_SETS = [
@@ -176,7 +176,7 @@ def test_existing_folder_needs_force(tmp_path):
 def test_scaffold_with_a_world(tmp_path):
     from lxml import etree
 
-    from worldgen.ros.launch_reader import read_launch
+    from worldgen.launch.reader import read_launch
 
     spec = tmp_path / "box_room.yaml"
     spec.write_text("name: box_room\nrooms:\n  - name: a\n    rect: {center: [1, 2], size: [4, 3]}\n"
@@ -209,7 +209,7 @@ def test_request_validation_is_a_library_function():
 # ------------------------------------------------------------------------------------------- check_package
 
 def test_check_package_finds_what_breaks(tmp_path):
-    from worldgen.ros.scaffold import create_package
+    from worldgen.packages.catkin import create_package
 
     spec = tmp_path / "room.yaml"
     spec.write_text("name: room\nrooms:\n  - name: a\n    rect: {center: [0, 0], size: [4, 4]}\n"

@@ -211,7 +211,7 @@ def test_camera_looks_straight_down_on_the_whole_building():
 
 def test_versions_and_model_folder():
     from worldgen.cli.build import SDF_VERSION_CHOICES, build_command
-    from worldgen.ros.targets import SDF_VERSION
+    from worldgen.launch.targets import SDF_VERSION
     from worldgen.sdf.writer import DEFAULT_SDF_VERSION
 
     # the command lists the versions itself (so that the CLI starts without lxml); they must be the writer's

@@ -1,5 +1,5 @@
 """Before a run starts: every Python node it would start has its imports looked up for the Python that runs it
-(:mod:`worldgen.ros.runtime_check`), so that a node importing numpy on a machine without it is an error finding
+(:mod:`worldgen.runtime.check`), so that a node importing numpy on a machine without it is an error finding
 naming the package — found in a second, before any master or simulator starts — rather than a node dying at
 start-up and a robot that never moves.
 
@@ -18,7 +18,7 @@ from typing import Mapping, Sequence
 from ..check.report import Result
 from ..core.errors import WorldgenError
 from ..core.findings import Finding
-from ..ros.runtime_check import findings, survey
+from ..runtime.check import findings, survey
 from .nodes import NodeSpec
 
 

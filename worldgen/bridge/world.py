@@ -74,7 +74,7 @@ def load_world(path: str | Path, *, spawn=None, robot: str | None = None, launch
 
 def _from_launch(path: Path, need_world: bool = True):
     from ..core.spawnpose import plan_pose
-    from ..ros.launch_reader import read_launch
+    from ..launch.reader import read_launch
 
     info = read_launch(path)
     spawn = plan_pose(info.spawn)

@@ -195,14 +195,14 @@ def _folder_jobs(folder: Path, options: Options, launch_info, notes) -> list[Job
 
 
 def _read_launch(path: Path):
-    from ..ros.launch_reader import read_launch
+    from ..launch.reader import read_launch
 
     return read_launch(path)
 
 
 def _package_jobs(folder: Path, options: Options) -> list[Job]:
     """A package gives a row of its own (the package check) and one job per launch file."""
-    from ..ros.package_check import package_launch_files
+    from ..packages.check import package_launch_files
     from .discover import is_metapackage
 
     findings = _package_findings(folder)
@@ -218,9 +218,9 @@ def _package_jobs(folder: Path, options: Options) -> list[Job]:
 
 
 def _package_findings(folder: Path) -> list[Finding]:
-    """:func:`worldgen.ros.package_check.check_package`, its ids put under ``package-`` (``cmake`` →
+    """:func:`worldgen.packages.check.check_package`, its ids put under ``package-`` (``cmake`` →
     ``package-cmake``)."""
-    from ..ros.package_check import check_package
+    from ..packages.check import check_package
 
     return [f if f.check.startswith("package") else dc_replace(f, check=f"package-{f.check}")
             for f in check_package(folder)]
@@ -238,7 +238,7 @@ def _launch_path_job(path: Path, display: str) -> Job:
 
 
 def _launch_job(path: Path, info, display: str) -> Job:
-    from ..ros.launch_reader import nothing_to_simulate
+    from ..launch.reader import nothing_to_simulate
 
     job = Job(path=display, pre_checks=["launch"], findings=list(info.findings))
     why = nothing_to_simulate(path, info)   # nodes beside a world started elsewhere; a spawn other files include

@@ -14,8 +14,8 @@ from pathlib import Path
 import click
 
 SDF_VERSION_CHOICES = ("1.6", "1.7", "1.8", "1.9")   # = worldgen.sdf.writer.SDF_VERSIONS, without importing it
-ROS_CHOICES = ("noetic", "humble", "jazzy")          # = worldgen.ros.targets.ROS_TARGETS
-CMD_VEL_CHOICES = ("stamped", "twist")               # = worldgen.ros.targets.CMD_VEL_CHOICES
+ROS_CHOICES = ("noetic", "humble", "jazzy")          # = worldgen.launch.targets.ROS_TARGETS
+CMD_VEL_CHOICES = ("stamped", "twist")               # = worldgen.launch.targets.CMD_VEL_CHOICES
 WORLD_SUFFIXES = (".world", ".sdf")
 
 
@@ -49,7 +49,7 @@ def build_command(spec: Path, out_dir: Path, sdf_version: str | None, model_dir:
     from ..core.errors import InputError
     from ..core.fsio import write_files
     from ..geometry.building import build_geometry
-    from ..ros.targets import SDF_VERSION
+    from ..launch.targets import SDF_VERSION
     from ..sdf.writer import planned_files
     from ..spec.load import load_spec
 
@@ -70,18 +70,12 @@ def build_command(spec: Path, out_dir: Path, sdf_version: str | None, model_dir:
     files = planned_files(building, out_dir, sdf_version=sdf_version or SDF_VERSION[ros], model_dir=model_dir,
                           description=f"{building.name}: built by worldgen from {_text(spec.name)}")
     if package_dir is not None:   # the world moves into the package, beside its launch file
-        from ..ros.spawn import spec_spawn
+        from ..launch.spawn import spec_spawn
+        from ..packages.world_files import package_world_files
 
         world_text = files.pop(out_dir / f"{building.name}.world")
         spawn = spec_spawn(plan, world_text)
-        if ros == "noetic":
-            from ..ros.launch import package_world_files
-
-            files.update(package_world_files(package_dir, building.name, world_text, spawn))
-        else:
-            from ..ros.launch_py import package_world_files as package_world_files_py
-
-            files.update(package_world_files_py(package_dir, building.name, world_text, spawn, ros))
+        files.update(package_world_files(package_dir, building.name, world_text, spawn, ros))
     for path in write_files(files, force=force):
         click.echo(f"wrote {path}")
 
@@ -107,8 +101,9 @@ def _build_gzsim(spec: Path, plan, building, out_dir: Path, sdf_version: str | N
     if package_dir is None:
         files = {out_dir / f"{building.name}.sdf": world_text}
     else:
-        from ..ros.launch_py import package_world_files, without_same_params
-        from ..ros.spawn import spec_spawn
+        from ..launch.spawn import spec_spawn
+        from ..launch.writer_py import without_same_params
+        from ..packages.world_files import package_world_files
 
         files = without_same_params(package_world_files(package_dir, building.name, world_text,
                                                         spec_spawn(plan, classic), "jazzy", cmd_vel=cmd_vel))

@@ -1,8 +1,8 @@
 """``worldgen launch``, ``worldgen scaffold`` and ``worldgen course``: launch files and packages for ROS 1 (catkin,
 the default ``--ros noetic``) and ROS 2 (ament_python, ``--ros humble|jazzy``).
 
-A thin layer over :mod:`worldgen.ros.launch`, :mod:`worldgen.ros.launch_py`, :mod:`worldgen.geometry.placement`,
-:mod:`worldgen.ros.scaffold`, :mod:`worldgen.ros.ament`, :mod:`worldgen.ros.course` and :mod:`worldgen.ros.course2`.
+A thin layer over :mod:`worldgen.launch.writer_xml`, :mod:`worldgen.launch.writer_py`, :mod:`worldgen.geometry.placement`,
+:mod:`worldgen.packages.catkin`, :mod:`worldgen.packages.ament`, :mod:`worldgen.packages.course_ros1` and :mod:`worldgen.packages.course_ros2`.
 """
 
 from __future__ import annotations
@@ -13,8 +13,8 @@ from pathlib import Path
 
 import click
 
-from ..ros.launch import MODEL_CHOICES
-from ..ros.targets import CMD_VEL_CHOICES, DEFAULT_ROS, ROS_TARGETS
+from ..launch.writer_xml import MODEL_CHOICES
+from ..launch.targets import CMD_VEL_CHOICES, DEFAULT_ROS, ROS_TARGETS
 
 ROS_HELP = ("The ROS and Gazebo to write for: noetic (ROS 1, Gazebo Classic), humble (ROS 2, Gazebo Classic) or "
             "jazzy (ROS 2, Gazebo Sim).")
@@ -61,12 +61,12 @@ def launch_command(world: Path, package: str | None, name: str | None, model: st
     from ..core.errors import InputError
     from ..core.numbers import format_number
     from ..core.fsio import write_file, write_files
-    from ..ros.gz_bridge_params import BRIDGE_FILE, bridge_yaml
-    from ..ros.launch import default_launch_name, launch_xml, package_name_of, parse_node
-    from ..ros.launch_py import default_launch_py_name, launch_py, without_same_params
-    from ..ros.targets import cmd_vel_type
+    from ..launch.gz_bridge_params import BRIDGE_FILE, bridge_yaml
+    from ..launch.writer_xml import default_launch_name, launch_xml, package_name_of, parse_node
+    from ..launch.writer_py import default_launch_py_name, launch_py, without_same_params
+    from ..launch.targets import cmd_vel_type
     from ..core.spawnpose import floor_pose, parse_spawn
-    from ..ros.spawn import spawn_for_world
+    from ..launch.spawn import spawn_for_world
 
     node_refs = [parse_node(n) for n in nodes]
     world_pkg = world.resolve().parent.parent if world.resolve().parent.name == "worlds" else None
@@ -163,10 +163,10 @@ def scaffold_command(name: str, dependencies: tuple[str, ...], meta: bool, sys_d
     worlds/ and scripts/ folders that install, and optionally a world and its launch file. With --ros
     humble|jazzy an ament_python package as 'ros2 pkg create --build-type ament_python' makes it, with
     launch/ and worlds/ (jazzy: params/) that setup.py installs."""
-    from ..ros.scaffold import create_package, package_request
+    from ..packages.catkin import create_package, package_request
 
     if ros != "noetic":
-        from ..ros.ament import ament_request, create_ament_package
+        from ..packages.ament import ament_request, create_ament_package
 
         req = ament_request(name, dependencies, sys_deps=sys_deps, boost_comps=boost_comps, version=version,
                             description=description, licenses=licenses, authors=authors,
@@ -175,7 +175,7 @@ def scaffold_command(name: str, dependencies: tuple[str, ...], meta: bool, sys_d
         click.echo(f"wrote {target}")
         return
     if cmd_vel == "stamped":
-        from ..ros.targets import cmd_vel_type
+        from ..launch.targets import cmd_vel_type
 
         cmd_vel_type(ros, cmd_vel)
     req = package_request(name, dependencies, sys_deps=sys_deps, boost_comps=boost_comps, version=version,
@@ -194,16 +194,16 @@ def scaffold_command(name: str, dependencies: tuple[str, ...], meta: bool, sys_d
 def course_command(workspace: Path, ros: str, cmd_vel: str | None, force: bool) -> None:
     """Write the class packages (labs, the enclosed-room world, its launch file) into a catkin workspace, or
     with --ros humble|jazzy into a colcon workspace."""
-    from ..ros.course import write_course
+    from ..packages.course_ros1 import write_course
 
     if ros != "noetic":
-        from ..ros.course2 import write_course2
+        from ..packages.course_ros2 import write_course_ros2
 
-        target = write_course2(workspace, ros, cmd_vel=cmd_vel, force=force)
+        target = write_course_ros2(workspace, ros, cmd_vel=cmd_vel, force=force)
         click.echo(f"wrote {target}; build it with: cd {workspace} && colcon build")
         return
     if cmd_vel == "stamped":
-        from ..ros.targets import cmd_vel_type
+        from ..launch.targets import cmd_vel_type
 
         cmd_vel_type(ros, cmd_vel)
     target = write_course(workspace, force=force)

@@ -1,7 +1,7 @@
 """ROS packages on disk: their manifests, the folders rospack searches, and which package holds a file.
 
 The one place that crawls for ``package.xml`` files, for launch files' ``$(find PKG)``
-(:mod:`worldgen.ros.launch_reader`), xacro's ``$(find PKG)`` and ``package://`` URIs
+(:mod:`worldgen.launch.reader`), xacro's ``$(find PKG)`` and ``package://`` URIs
 (:mod:`worldgen.robots.description`) and Gazebo's ``model://``/``package://`` lookups
 (:mod:`worldgen.sdf.resolve`). Each caller chooses its roots and their order; crawling is done as catkin_pkg and
 rospkg do it: a root that is a package is that package; anything else is walked top-down (following symlinked

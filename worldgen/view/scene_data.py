@@ -107,7 +107,7 @@ def _launch_source(path: Path, model_paths) -> WorldSource:
 
     from ..core.errors import InputError
     from ..core.spawnpose import plan_pose
-    from ..ros.launch_reader import read_launch
+    from ..launch.reader import read_launch
     from ..spec.model import ROBOT_MODELS
 
     info = read_launch(path)

@@ -1,4 +1,4 @@
-"""The values :mod:`.pystatic` reads Python into: plain Python values, plus :class:`Unknown` (what cannot be known
+"""The values :mod:`.evaluate` reads Python into: plain Python values, plus :class:`Unknown` (what cannot be known
 without running the file, and why), :class:`Located` (a path in a ROS package's share folder), :class:`Symbol` (a
 name the file imports), :class:`Function` (one it defines), and the state of one read (:class:`Ctx`)."""
 

@@ -1,6 +1,6 @@
 """The class's ROS 2 packages (Humble or Jazzy), ready for ``colcon build``: ``WORKSPACE/src/intro_robo/``.
 
-The same class as :mod:`worldgen.ros.course` (ROS 1), as ament_python packages of :mod:`worldgen.ros.ament`:
+The same class as :mod:`worldgen.packages.course_ros1` (ROS 1), as ament_python packages of :mod:`worldgen.packages.ament`:
 
 * ``lab_a_spin_circles`` — the node ``spin_in_circles`` (``lab_a_spin_circles/spin_in_circles.py``, an rclpy
   node, entry point ``spin_in_circles``): a constant velocity on ``cmd_vel``;
@@ -22,16 +22,16 @@ from pathlib import Path
 
 from ..core.resources import render_template
 from .ament import ament_package_files, ament_request, spec_world_files
-from .course import LICENSE, REPOSITORY, SPIN, STOP, VERSION, WORLD_PACKAGE
-from .launch import parse_node
-from .launch_py import launch_py
-from .scaffold import PackageFiles
-from .targets import cmd_vel_type
+from .course_ros1 import LICENSE, REPOSITORY, SPIN, STOP, VERSION, WORLD_PACKAGE
+from ..launch.writer_xml import parse_node
+from ..launch.writer_py import launch_py
+from .catkin import PackageFiles
+from ..launch.targets import cmd_vel_type
 
 DEPENDENCIES = ("rclpy", "std_msgs", "geometry_msgs", "sensor_msgs")
 
 
-def course2_files(ros: str, cmd_vel: str | None = None, maintainer: str | None = None) -> PackageFiles:
+def course_ros2_files(ros: str, cmd_vel: str | None = None, maintainer: str | None = None) -> PackageFiles:
     """Every file of the class's ROS 2 packages for ``ros`` (humble, jazzy), relative to ``src/intro_robo``."""
     from ..core.resources import examples_dir
 
@@ -69,11 +69,11 @@ def course2_files(ros: str, cmd_vel: str | None = None, maintainer: str | None =
     return PackageFiles(dict(sorted(merged.files.items())), merged.executable)
 
 
-def write_course2(workspace: str | Path, ros: str, *, cmd_vel: str | None = None, force: bool = False,
+def write_course_ros2(workspace: str | Path, ros: str, *, cmd_vel: str | None = None, force: bool = False,
                   maintainer: str | None = None) -> Path:
     """Write ``WORKSPACE/src/intro_robo`` (the ROS 2 packages) all at once (nothing on error). An existing
     ``intro_robo`` folder is refused unless ``force``, which replaces it. Returns the folder."""
     from ..core.fsio import write_tree
 
-    pkg = course2_files(ros, cmd_vel, maintainer)
+    pkg = course_ros2_files(ros, cmd_vel, maintainer)
     return write_tree(Path(workspace) / "src" / REPOSITORY, pkg.files, force=force, executable=pkg.executable)

@@ -1,9 +1,9 @@
 """What the ROS 2 launch API's calls are when a launch file is read without running it: actions, substitutions,
-conditions and description sources as plain records, taught to :mod:`.pystatic` as :data:`LAUNCH_CALLS`.
+conditions and description sources as plain records, taught to :mod:`worldgen.pyread.evaluate` as :data:`LAUNCH_CALLS`.
 
 ``Node(...)``, ``IncludeLaunchDescription(...)``, ``DeclareLaunchArgument(...)``, ``GroupAction(...)`` … become an
 :class:`Action` of their kind with their arguments as read; ``LaunchConfiguration``, ``PathJoinSubstitution``,
-``EnvironmentVariable`` and ``FindPackageShare`` become substitutions that :mod:`.launch_py_reader` evaluates
+``EnvironmentVariable`` and ``FindPackageShare`` become substitutions that :mod:`.reader_py` evaluates
 where ros2 launch would, when the action runs; ``get_package_share_directory`` is answered at once, as it is when
 the file runs. A ``LaunchDescription`` collects the actions added to it. Calls of the launch API that do not
 bear on the world or the robot (``LogInfo``, ``SetParameter`` …) are actions of kind ``other``.
@@ -14,7 +14,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any, Dict, List
 
-from .pyvalues import Call, Ctx, Unknown
+from ..pyread.values import Call, Ctx, Unknown
 
 
 @dataclass

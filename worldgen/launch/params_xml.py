@@ -21,7 +21,7 @@ from __future__ import annotations
 import math
 from typing import Any, Dict, List, Tuple
 
-from .launch import join_ns
+from .model import join_ns
 
 TRUE_WORDS = ("true", "1")
 FALSE_WORDS = ("false", "0")

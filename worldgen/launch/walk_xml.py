@@ -1,8 +1,8 @@
 """The launch-file walker: one file's elements in order — ``<arg>``, ``<group>``, ``<param>``, ``<rosparam>``,
 ``<remap>``, ``<env>``, ``<include>`` (followed), ``<node>`` (with its own params, remaps and env;
-``gazebo_ros/spawn_model`` read for its pose, model and description) — into a :class:`~.launch_info.LaunchInfo`,
-with ``$(...)`` and ``if``/``unless`` evaluated by :mod:`.substitution` and parameters typed and named by
-:mod:`.launch_params`.
+``gazebo_ros/spawn_model`` read for its pose, model and description) — into a :class:`~.model.LaunchInfo`,
+with ``$(...)`` and ``if``/``unless`` evaluated by :mod:`.substitution_xml` and parameters typed and named by
+:mod:`.params_xml`.
 
 Read top-down: :func:`load_launch` parses a file and walks it (:func:`walk`), which hands each element in
 effect to its reader (:data:`ELEMENTS`).
@@ -19,11 +19,10 @@ from typing import Callable, Dict, List, Optional
 
 from ..core.errors import WorldFileError
 from ..core.findings import Finding
-from .launch import NodeRef, join_ns
-from .launch_info import LaunchInfo, RobotSpawn
-from .launch_params import ParamError, load_yaml, param_name, rosparam_sets, set_value, storable, \
+from .model import LaunchInfo, NodeRef, RobotSpawn, join_ns
+from .params_xml import ParamError, load_yaml, param_name, rosparam_sets, set_value, storable, \
     typed_value
-from .substitution import (ArgValue, Lookup, Scope, Unresolved, condition, expand, expand_lenient,
+from .substitution_xml import (ArgValue, Lookup, Scope, Unresolved, condition, expand, expand_lenient,
                            expand_or_keep, try_expand)
 
 XACRO_MODEL = re.compile(r"turtlebot3_([A-Za-z0-9_]+)\.urdf(?:\.xacro)?\b")

@@ -1,6 +1,6 @@
 """Can a node's imports be found by the Python that will run it? Checked before anything starts.
 
-Each node's imports are read statically (:mod:`.node_imports`); their top-level names are then looked up with
+Each node's imports are read statically (:mod:`.imports`); their top-level names are then looked up with
 ``importlib.util.find_spec`` in one child process of the interpreter the nodes run with, in the environment they
 get, with ``sys.path[0]`` set to each node's own folder in turn (as ``python3 node.py`` sets it, so a sibling
 helper module is found). ``find_spec`` of a top-level name locates it without importing it, so no node code and no
@@ -11,7 +11,7 @@ A name that is not found is a **gap**, told apart by what fills it:
 * a module of the node's own catkin workspace — found only in its package's ``src/`` (a ``setup.py`` package), or
   named as a package beside it (``from my_pkg.msg import X``) — needs the workspace built and sourced
   (``catkin_make``), not a Debian package;
-* a module of :data:`~worldgen.ros.runtime.TABLE` needs its package (or, for Python 2's names, renaming);
+* a module of :data:`~worldgen.runtime.table.TABLE` needs its package (or, for Python 2's names, renaming);
 * anything else is unknown to worldgen: pip, or ``apt-cache search``.
 
 ``gazebo_msgs`` is never a gap: worldgen generates it for the nodes it runs. :func:`findings` turns gaps into
@@ -29,8 +29,8 @@ from typing import Container, Iterable, Mapping
 
 from ..core.errors import InputError
 from ..core.findings import Finding
-from .node_imports import NodeSource, read_node
-from .runtime import install_hint, provider
+from .imports import NodeSource, read_node
+from .table import install_hint, provider
 
 TIMEOUT = 60.0   # s for the child to answer (it only reads directories)
 

@@ -1,5 +1,7 @@
-"""What :func:`worldgen.ros.launch_reader.read_launch` finds in a launch file: the world, the robots it spawns,
-its args, nodes and includes, and findings for whatever could not be resolved."""
+"""What both launch readers and the writers share: a node a launch file starts (:class:`NodeRef`) and its
+full name (:func:`join_ns`); what :func:`worldgen.launch.reader.read_launch` finds in a launch file (the world,
+the robots it spawns, its args, nodes and includes: :class:`LaunchInfo`); and the findings a read adds for
+whatever could not be resolved (:func:`note`, :func:`note_unresolved`)."""
 
 from __future__ import annotations
 
@@ -8,7 +10,37 @@ from pathlib import Path
 
 from ..core.findings import Finding
 from ..core.spawnpose import Pose
-from .launch import NodeRef
+
+
+@dataclass(frozen=True)
+class NodeRef:
+    """A node started by a launch file: ``pkg/type`` run under ``name`` (in namespace ``ns`` when read back),
+    with what roslaunch gives it besides: ``args``, its ``<remap>``s (``from``, ``to``) and ``<env>``s, and whether
+    it is ``required`` (its exit ends the launch) or ``respawn`` (started again when it exits)."""
+
+    package: str
+    type: str
+    name: str
+    ns: str = "/"
+    args: str | None = None
+    line: int | None = None
+    remaps: tuple = ()
+    env: tuple = ()
+    required: bool = False
+    respawn: bool = False
+
+    @property
+    def full_name(self) -> str:
+        return join_ns(self.ns, self.name)
+
+
+def join_ns(ns: str, name: str) -> str:
+    """The full graph name of ``name`` in namespace ``ns`` (``/`` + segments; an absolute ``name`` stays)."""
+    if name.startswith("/"):
+        return "/" + name.strip("/")
+    parts = [p for p in ns.split("/") + name.split("/") if p]
+    return "/" + "/".join(parts)
+
 
 
 @dataclass(frozen=True)

@@ -1,8 +1,8 @@
-"""The part of Python and its standard library that :mod:`.pystatic` reads: operators, comparisons, indexing,
+"""The part of Python and its standard library that :mod:`.evaluate` reads: operators, comparisons, indexing,
 string methods and formatting, ``os.path``, ``pathlib``, ``os.environ``/``os.getenv`` and a few builtins.
 
 Only plain values take part (strings, numbers, booleans, None, lists, tuples, dicts, paths); anything else is an
-:class:`~.pystatic.Unknown` saying why. Formatting refuses field widths over 1000 and attribute look-ups in format
+:class:`~.evaluate.Unknown` saying why. Formatting refuses field widths over 1000 and attribute look-ups in format
 fields, so a hostile file cannot make a huge string or reach Python's internals; nothing here touches the file
 system, runs a program or imports a module.
 """
@@ -15,7 +15,7 @@ import re
 import string
 from pathlib import PurePosixPath
 
-from .pyvalues import MAX_NESTING, MAX_SIZE, Call, Ctx, Located, Symbol, Unknown, first_unknown, shown, sized
+from .values import MAX_NESTING, MAX_SIZE, Call, Ctx, Located, Symbol, Unknown, first_unknown, shown, sized
 
 PLAIN = (str, int, float, bool, type(None))
 WIDTH = re.compile(r"\d+")

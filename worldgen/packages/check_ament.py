@@ -2,141 +2,31 @@
 install for ``ros2 launch`` and ``get_package_share_directory`` to find its launch files and worlds.
 
 - **ament_python** (``<build_type>ament_python</build_type>``): ``setup.py`` (read statically with
-  :mod:`.pystatic`, never run: ``name``, ``data_files``, ``entry_points``), ``setup.cfg`` (where ``ros2 run``
+  :mod:`worldgen.pyread.evaluate`, never run: ``name``, ``data_files``, ``entry_points``), ``setup.cfg`` (where ``ros2 run``
   finds the executables), ``resource/NAME`` (the ament index marker) installed to
   ``share/ament_index/resource_index/packages``, ``package.xml`` and every file of ``launch/`` and ``worlds/``
   installed under ``share/NAME``.
 - **ament_cmake**: ``CMakeLists.txt`` with ``project(NAME)``, ``find_package(ament_cmake REQUIRED)``,
   ``ament_package()`` and ``install(DIRECTORY launch worlds … DESTINATION share/${PROJECT_NAME})``.
 
-:func:`installed_source` answers the other way round, for the launch reader: which file of the package a path
-under ``share/NAME`` comes from.
+setup.py is read by :mod:`worldgen.pyread.setup_py`, which also tells the launch reader which file of a package
+a path under ``share/NAME`` comes from.
 """
 
 from __future__ import annotations
 
 import configparser
-import glob as globbing
 import re
-from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Callable, List, Optional, Set, Tuple
+from typing import Callable, Optional, Set
 
 from ..core.errors import WorldFileError
 from ..core.packages import MANIFEST
+from ..pyread.setup_py import installed_files, read_setup
 from .build_files import check_project, cmake_text, file_text
-from .pystatic import parse_python, read_module
-from .pyvalues import Call, Ctx, Unknown, first_unknown, not_run
 
 SHARED = ("launch", "worlds", "models")   # the folders a class package's launch files and worlds live in
 Add = Callable[..., None]   # add(check, severity, message, where=None, fix=None)
-
-
-class GlobPattern(str):
-    """A ``glob(PATTERN)`` in setup.py: the files it matches are the package's own, matched when checked."""
-
-
-@dataclass
-class SetupInfo:
-    """What a setup.py gives setuptools, as far as it can be read: the name, ``data_files`` as (destination,
-    sources) pairs, the ``console_scripts`` names, and why anything could not be read (line, reason)."""
-
-    name: object = None
-    data_files: List[Tuple[object, list]] = field(default_factory=list)
-    scripts: Set[str] = field(default_factory=set)
-    unreadable: List[Tuple[Optional[int], str]] = field(default_factory=list)
-    found: bool = False
-
-
-def read_setup(setup_py: Path) -> SetupInfo:
-    """setup.py read statically: the keyword arguments of its ``setup(...)`` call."""
-    info = SetupInfo()
-
-    def setup(ctx: Ctx, call: Call):
-        info.found = True
-        info.name = call.kwargs.get("name")
-        _data_files(info, call.kwargs.get("data_files"), call.line)
-        _entry_points(info, call.kwargs.get("entry_points"), call.line)
-        scripts = call.kwargs.get("scripts")   # installed where setup.cfg puts scripts: lib/NAME
-        if isinstance(scripts, (list, tuple)):
-            info.scripts.update(Path(p).name for p in scripts if isinstance(p, str))
-        return None
-
-    def skipped(ctx: Ctx, kind: str, node, frame, reason) -> None:   # a loop may add to data_files
-        info.unreadable.append((getattr(node, "lineno", None), f"{not_run(kind, node)} is not run here"))
-
-    calls = {"setup": setup, "glob": lambda ctx, call: [GlobPattern(call.arg(0, "pathname"))]
-             if isinstance(call.arg(0, "pathname"), str) else Unknown("glob() of a pattern that cannot be known",
-                                                                        call.line)}
-    try:
-        read_module(Ctx(setup_py, {}, calls, on_skip=skipped), parse_python(setup_py, "setup.py"))
-    except RecursionError:   # every nesting is bounded; this is the backstop for their product
-        raise WorldFileError("setup.py nests too deeply to read", path=setup_py, hint="simplify it") from None
-    return info
-
-
-def _data_files(info: SetupInfo, given, line: int | None) -> None:
-    if given is None:
-        return
-    if not isinstance(given, (list, tuple)):
-        info.unreadable.append((line, f"data_files: {given.reason if isinstance(given, Unknown) else 'not a list'}"))
-        return
-    for entry in given:
-        if isinstance(entry, (list, tuple)) and len(entry) == 2 and isinstance(entry[1], (list, tuple)):
-            unknown = first_unknown([entry[0], *entry[1]])
-            if unknown is not None:
-                info.unreadable.append((unknown.line or line, f"a data_files entry: {unknown.reason}"))
-            info.data_files.append((entry[0], list(entry[1])))
-        else:
-            reason = entry.reason if isinstance(entry, Unknown) else "not a (destination, [files]) pair"
-            info.unreadable.append((getattr(entry, "line", None) or line, f"a data_files entry: {reason}"))
-
-
-def _entry_points(info: SetupInfo, given, line: int | None) -> None:
-    scripts = given.get("console_scripts") if isinstance(given, dict) else None
-    if isinstance(given, Unknown) or isinstance(scripts, Unknown):
-        info.unreadable.append((line, f"entry_points: {(given if isinstance(given, Unknown) else scripts).reason}"))
-        return
-    for item in scripts if isinstance(scripts, (list, tuple)) else []:
-        if isinstance(item, str) and "=" in item:
-            info.scripts.add(item.split("=", 1)[0].strip())
-
-
-def _sources(pkg_dir: Path, sources: list) -> List[Path]:
-    """The package's files a data_files entry installs (globs matched in the package folder, sorted)."""
-    found: List[Path] = []
-    for source in sources:
-        if isinstance(source, GlobPattern):
-            found += sorted(Path(p) for p in globbing.glob(str(pkg_dir / source)) if Path(p).is_file())
-        elif isinstance(source, str):
-            found.append(pkg_dir / source)
-    return found
-
-
-def _destination(dest) -> Optional[str]:
-    return str(dest).strip().strip("/") if isinstance(dest, str) else None
-
-
-def installed_source(pkg_dir: Path, relative: Path) -> Optional[Path]:
-    """The file of the ament_python package ``pkg_dir`` that its setup.py installs as ``share/NAME/relative``
-    (None when it installs none there, or setup.py cannot be read)."""
-    from ..core.packages import manifest_name
-
-    setup_py = pkg_dir / "setup.py"
-    name = manifest_name(pkg_dir / MANIFEST)
-    if not setup_py.is_file() or not name:
-        return None
-    try:
-        info = read_setup(setup_py)
-    except WorldFileError:
-        return None
-    want = f"share/{name}/{relative.parent.as_posix()}".rstrip("/.")
-    for dest, sources in info.data_files:
-        if _destination(dest) == want:
-            for source in _sources(pkg_dir, sources):
-                if source.name == relative.name and source.is_file():
-                    return source
-    return None
 
 
 # --------------------------------------------------------------------------------------------------- checks
@@ -179,11 +69,7 @@ def _check_python(pkg_dir: Path, name: str, add: Add) -> Optional[Set[str]]:
     if isinstance(info.name, str) and info.name != name:
         add("package-setup", "warning", f"setup.py names the package {info.name!r}, package.xml {name!r}", setup_py,
             f"write name='{name}' (or name=package_name)")
-    installed = {}
-    for dest, sources in info.data_files:
-        where = _destination(dest)
-        if where is not None:
-            installed.setdefault(where, []).extend(p.resolve() for p in _sources(pkg_dir, sources))
+    installed = installed_files(pkg_dir, info)
     info.scripts.update(p.name for p in installed.get(f"lib/{name}", []))
     if not info.unreadable:
         _installs(pkg_dir, name, installed, setup_py, add)

@@ -1,10 +1,10 @@
 """What would break in a catkin or ament package: its manifest, build files, scripts and launch files.
 
 :func:`check_package` reads every launch file of the package (roslaunch XML and ROS 2 Python launch files) with
-:func:`worldgen.ros.launch_reader.read_launch` and turns what it cannot resolve into findings, beside the checks of
+:func:`worldgen.launch.reader.read_launch` and turns what it cannot resolve into findings, beside the checks of
 package.xml (with catkin_pkg when it is installed), the scripts' executable bits, and the build files: a catkin
 package's CMakeLists.txt here, an ament package's (setup.py, setup.cfg, resource marker, or CMakeLists.txt with
-ament_package()) in :mod:`.ament_check`.
+ament_package()) in :mod:`.check_ament`.
 """
 
 from __future__ import annotations
@@ -16,9 +16,9 @@ from typing import Mapping, Sequence
 
 from ..core.errors import WorldFileError
 from ..core.findings import Finding
-from .ament_check import check_ament
+from .check_ament import check_ament
 from .build_files import check_project, cmake_text, file_text
-from .launch_reader import PYTHON_LAUNCH_SUFFIXES, read_launch
+from ..launch.reader import PYTHON_LAUNCH_SUFFIXES, read_launch
 from ..core.packages import build_type, manifest_name
 from ..spec.model import ROBOT_MODELS
 
@@ -42,7 +42,7 @@ def check_package(pkg_dir: str | Path, *, ros_package_path: Sequence[str | Path]
                   environ: Mapping[str, str] | None = None) -> list[Finding]:
     """What would break in the catkin or ament package at ``pkg_dir``: package.xml that catkin_pkg cannot parse
     (or a name catkin rejects), a catkin CMakeLists.txt without ``project(NAME)``/``catkin_package()`` or not
-    installing its launch/worlds/models folders (an ament package's build files: :mod:`.ament_check`), scripts
+    installing its launch/worlds/models folders (an ament package's build files: :mod:`.check_ament`), scripts
     without their executable bit, launch files that do not parse, name a world file that does not exist, an
     unknown robot model or a node the package does not have, and missing exec_depends on the packages the launch
     files use."""

@@ -12,7 +12,7 @@
 * ``intro_robo`` — a metapackage grouping the four.
 
 Each lab package also has a launch file that starts the class world with its node. The node scripts are rendered
-from ``templates/nodes/``; everything else comes from :mod:`worldgen.ros.scaffold`, so the packages are exactly what
+from ``templates/nodes/``; everything else comes from :mod:`worldgen.packages.catkin`, so the packages are exactly what
 ``worldgen scaffold`` would make.
 """
 
@@ -21,11 +21,11 @@ from __future__ import annotations
 from dataclasses import replace
 from pathlib import Path
 
-from .launch import default_launch_name, launch_xml, parse_node
+from ..launch.writer_xml import default_launch_name, launch_xml, parse_node
 from ..core import stoplaw
 from ..core.numbers import format_number
 from ..core.resources import render_template
-from .scaffold import PackageFiles, PackageRequest, package_files, package_request, world_from_spec
+from .catkin import PackageFiles, PackageRequest, package_files, package_request, world_from_spec
 
 REPOSITORY = "intro_robo"
 WORLD_PACKAGE = "class_meeting_02_custom_gazebo_world"

@@ -6,7 +6,7 @@ the three-tag expansion of each dependency, ``python-*`` system deps as exec_dep
 folders a class package needs (``launch/``, ``worlds/``, ``scripts/``, and ``src/``/``include/NAME`` as catkin
 makes them). A package with launch files also exec_depends on gazebo_ros, turtlebot3_description and xacro; one
 with a world also has a ``models/`` folder that it exports to Gazebo.
-(:func:`worldgen.ros.package_check.check_package` reads a package back and says what would break.)
+(:func:`worldgen.packages.check.check_package` reads a package back and says what would break.)
 
 Deliberate differences from catkin_create_pkg, each where catkin's output would not work: values are XML-escaped;
 ``catkin_package()`` lists the catkin dependencies in ``CATKIN_DEPENDS`` (catkin_lint calls it an error when
@@ -25,7 +25,7 @@ from pathlib import Path
 from typing import Iterable, Mapping, Sequence
 
 from ..core.errors import InputError
-from .launch import launch_xml
+from ..launch.writer_xml import launch_xml
 from ..core.resources import render_template
 
 # REP 144: lowercase letters, digits and underscores, starting with a letter.
@@ -237,7 +237,7 @@ def world_from_spec(spec_path: str | Path, model: str = "optenv") -> tuple[str, 
     """Build the world of the spec at ``spec_path``: its file name ``NAME.world``, its SDF text and the robot's
     spawn pose (x, y, z, yaw): the spec's robot pose, or without one the deepest point of the room."""
     from ..sdf.writer import spec_world_sdf
-    from .spawn import spec_spawn
+    from ..launch.spawn import spec_spawn
     from ..spec.load import load_spec
 
     spec = load_spec(spec_path)
@@ -250,7 +250,7 @@ def world_package_files(spec_path: str | Path, package: str, model: str = "opten
                         ) -> tuple[dict[str, str], dict[str, str]]:
     """(worlds, launches) for a package ``package`` holding the spec's world: ``NAME.world`` and
     ``turtlebot3_in_NAME.launch``."""
-    from .launch import default_launch_name
+    from ..launch.writer_xml import default_launch_name
 
     world_file, world_text, spawn = world_from_spec(spec_path, model)
     launch_name = default_launch_name(world_file)

@@ -1,17 +1,17 @@
 """Reading ROS 2 Python launch files (``*.launch.py``) without running them: the world, the robots and their
-spawn poses, the robot model — the same :class:`~.launch_info.LaunchInfo` the roslaunch XML reader gives.
+spawn poses, the robot model — the same :class:`~.model.LaunchInfo` the roslaunch XML reader gives.
 
-The file is parsed with :mod:`ast` and read by :mod:`.pystatic` (never executed or imported): module-level
+The file is parsed with :mod:`ast` and read by :mod:`worldgen.pyread.evaluate` (never executed or imported): module-level
 assignments, then ``generate_launch_description()`` (and the functions of the file it calls), with the launch API
-taught by :mod:`.launch_py_values`. The description it returns is then walked in order, as ros2 launch would run
+taught by :mod:`.values_py`. The description it returns is then walked in order, as ros2 launch would run
 it: ``DeclareLaunchArgument`` defaults, ``LaunchConfiguration`` values where they are used, conditions,
 ``GroupAction``/``PushRosNamespace``, timers and event handlers, ``OpaqueFunction``s, and includes — gazebo_ros's
 ``gzserver.launch.py`` (``world``) and ros_gz_sim's ``gz_sim.launch.py`` (``gz_args``) read as the world, other
-Python launch files followed with the arguments passed to them. Spawns are :mod:`.launch_py_gazebo`'s.
+Python launch files followed with the arguments passed to them. Spawns are :mod:`.gazebo_py`'s.
 
 ``get_package_share_directory('pkg')``/``FindPackageShare('pkg')`` name the package's folder: the package holding
 the file, its siblings in the workspace, ``ROS_PACKAGE_PATH``, then ``AMENT_PREFIX_PATH``'s ``share/pkg`` (an
-ament_python package's files are found where its ``setup.py`` installs them from: :mod:`.ament_check`).
+ament_python package's files are found where its ``setup.py`` installs them from: :mod:`worldgen.pyread.setup_py`).
 
 Whatever cannot be read this way — a loop, a call it cannot follow, a package that is not there — is a finding
 naming what and where (file:line), and what depends on it stays unknown: no spawn pose means validate checks the
@@ -28,17 +28,17 @@ from typing import Dict, List, Mapping, Optional
 
 from ..core.errors import WorldFileError
 from ..core.packages import PackageIndex
-from .launch import NodeRef, join_ns
-from .launch_info import LaunchInfo, RobotSpawn
-from .launch_py_gazebo import (GAZEBO_LAUNCH, GAZEBO_PACKAGES, NAME_FLAGS, POSE_FLAGS, SPAWNERS, STOCK_SPAWN,
+from .model import LaunchInfo, NodeRef, RobotSpawn, join_ns
+from .gazebo_py import (GAZEBO_LAUNCH, GAZEBO_PACKAGES, NAME_FLAGS, POSE_FLAGS, SPAWNERS, STOCK_SPAWN,
                                command_kind, flag_value, gazebo_world, gz_world, mentions_simulator, robot_model,
                                words)
-from .launch_py_scope import STATIC_FIX, PyRead, Scope
-from .launch_py_values import LAUNCH_CALLS, Action, Cond, Config, Description, Source
-from .launch_walk import count_include
-from .pystatic import call_function, parse_python, read_module
-from .pystdlib import env_value
-from .pyvalues import MAX_NESTING, Ctx, Function, Located, Unknown, first_unknown, not_run, shown
+from .scope_py import STATIC_FIX, PyRead, Scope
+from .values_py import LAUNCH_CALLS, Action, Cond, Config, Description, Source
+from .walk_xml import count_include
+from ..pyread.evaluate import call_function, parse_python, read_module
+from ..pyread.setup_py import installed_source
+from ..pyread.stdlib import env_value
+from ..pyread.values import MAX_NESTING, Ctx, Function, Located, Unknown, first_unknown, not_run, shown
 
 
 # ----------------------------------------------------------------------------------------------- the read
@@ -436,8 +436,6 @@ def _share_file(read: PyRead, value) -> Optional[Path]:
     if path.exists():
         return path
     if isinstance(value, Located) and read.packages.get(value.package) is not None:
-        from .ament_check import installed_source
-
         root = read.packages[value.package]
         try:
             relative = path.relative_to(root)

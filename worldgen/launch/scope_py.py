@@ -1,4 +1,4 @@
-"""The state of one read of a ROS 2 Python launch file (:mod:`.launch_py_reader`): what is found so far, the
+"""The state of one read of a ROS 2 Python launch file (:mod:`.reader_py`): what is found so far, the
 findings and their fixes (:class:`PyRead`), and where the walk is — its launch configurations, namespace and file —
 with substitutions performed as ros2 launch performs them there (:class:`Scope`): ``LaunchConfiguration`` (passed,
 else the ``DeclareLaunchArgument`` default, else its own ``default=``), ``PathJoinSubstitution``,
@@ -15,11 +15,11 @@ from typing import Dict, List, Mapping, Optional
 from ..core.errors import WorldFileError
 from ..core.findings import Finding
 from ..core.packages import PackageIndex
-from .launch_info import LaunchInfo
-from .launch_py_values import Config, Subst
-from .launch_walk import STOCK_PACKAGES
-from .pystdlib import env_value
-from .pyvalues import MAX_NESTING, MAX_WORK, Ctx, Located, Symbol, Unknown, first_unknown, shown
+from .model import LaunchInfo
+from .values_py import Config, Subst
+from .walk_xml import STOCK_PACKAGES
+from ..pyread.stdlib import env_value
+from ..pyread.values import MAX_NESTING, MAX_WORK, Ctx, Located, Symbol, Unknown, first_unknown, shown
 
 ROS2_STOCK = STOCK_PACKAGES | {"ros_gz_sim", "ros_gz_bridge", "ros_gz_image", "ros_ign_gazebo", "turtlebot3_bringup",
                                "robot_state_publisher"}

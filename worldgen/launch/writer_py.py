@@ -1,5 +1,5 @@
 """ROS 2 launch files (``*.launch.py``) for a world and a TurtleBot3: Humble with Gazebo Classic, Jazzy with Gazebo
-Sim. The ROS 1 (roslaunch XML) writer is :mod:`worldgen.ros.launch`; the two share its names and checks.
+Sim. The ROS 1 (roslaunch XML) writer is :mod:`worldgen.launch.writer_xml`; the two share its names and checks.
 
 The shape is the one of turtlebot3_gazebo's humble and jazzy launch files, in one file:
 
@@ -17,7 +17,7 @@ The shape is the one of turtlebot3_gazebo's humble and jazzy launch files, in on
   carry no Gazebo plugins, that model has the drive, LiDAR, IMU and joint states — by ``spawn_entity.py -entity
   … -file …`` (Humble) or ``ros_gz_sim create -name … -file …`` (Jazzy), with ``-x -y -z -Y`` from the arguments;
 * Jazzy: ``ros_gz_bridge parameter_bridge`` with ``config_file:=share/PKG/params/turtlebot3_bridge.yaml``
-  (:mod:`worldgen.ros.gz_bridge_params`);
+  (:mod:`worldgen.launch.gz_bridge_params`);
 * extra nodes (``--node PKG/EXECUTABLE[:NAME]``), each with ``use_sim_time``.
 
 Python values are only written from names checked against narrow patterns, so the file is valid Python (and
@@ -33,7 +33,8 @@ from ..core.errors import InputError
 from ..core.numbers import format_number
 from ..core.resources import render_template
 from .gz_bridge_params import BRIDGE_FILE, bridge_yaml, bridged_topics
-from .launch import MODEL_CHOICES, NodeRef, check_package_ref, check_world_name, package_name_of
+from .model import NodeRef
+from .writer_xml import MODEL_CHOICES, check_package_ref, check_world_name, package_name_of
 from .targets import ROS2_TARGETS, cmd_vel_type, world_file_name
 
 LAUNCH_SUFFIX = ".launch.py"
@@ -55,9 +56,9 @@ def check_ros2(ros: str) -> str:
 
 def launch_py(world_file: str, package: str, ros: str, model: str = "optenv", spawn: Sequence[float] = (0.0, 0.0),
               nodes: Sequence[NodeRef] = (), launch_name: str | None = None, home: str | None = None) -> str:
-    """The ``.launch.py`` text for ``share/PACKAGE/worlds/WORLD`` and a TurtleBot3 on ``ros`` (humble, jazzy).
+    """The ``.writer_xml.py`` text for ``share/PACKAGE/worlds/WORLD`` and a TurtleBot3 on ``ros`` (humble, jazzy).
 
-    ``model``, ``spawn``, ``nodes`` and ``home`` mean what they mean for :func:`worldgen.ros.launch.launch_xml`
+    ``model``, ``spawn``, ``nodes`` and ``home`` mean what they mean for :func:`worldgen.launch.writer_xml.launch_xml`
     (``home`` is named in the ``ros2 launch HOME NAME`` line of the docstring). Raises InputError for a bad
     target, model, package, world name or a duplicate node name.
     """
@@ -100,15 +101,6 @@ def world_package_files(world_name: str, world_text: str, package: str, ros: str
     else:
         cmd_vel_type(ros, cmd_vel)   # refuses --cmd-vel stamped
     return files
-
-
-def package_world_files(pkg_dir: str | Path, world_name: str, world_text: str, spawn: Sequence[float], ros: str,
-                        model: str = "optenv", cmd_vel: str | None = None) -> dict[Path, str]:
-    """:func:`world_package_files` placed in the package folder ``pkg_dir`` (for ``worldgen build --package``)."""
-    pkg_dir = Path(pkg_dir)
-    package = check_package_ref(package_name_of(pkg_dir))
-    files = world_package_files(world_name, world_text, package, ros, spawn, model, cmd_vel)
-    return {pkg_dir / rel: text for rel, text in files.items()}
 
 
 def without_same_params(files: dict[Path, str]) -> dict[Path, str]:

@@ -6,13 +6,12 @@ The writer emits the class's launch file shape (the one of ``turtlebot3_gazebo``
 through; ``robot_description`` from xacro; ``spawn_model`` named ``spawn_urdf``; optional extra nodes.
 
 Where the robot spawns is :mod:`worldgen.geometry.placement`'s job; reading launch files back is
-:mod:`worldgen.ros.launch_reader`'s, checking a catkin package :mod:`worldgen.ros.package_check`'s.
+:mod:`worldgen.launch.reader`'s, checking a catkin package :mod:`worldgen.packages.check`'s.
 """
 
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Sequence
 
@@ -21,6 +20,7 @@ from ..core.numbers import format_number
 from ..core.resources import render_template
 from ..core.packages import manifest_name
 from ..spec.model import ROBOT_MODELS
+from .model import NodeRef
 
 # The launch file's default model: "optenv" is TURTLEBOT3_MODEL when set, else burger (works in a fresh shell);
 # "env" is the class's exact $(env TURTLEBOT3_MODEL) (roslaunch fails when it is unset); or a fixed model.
@@ -34,28 +34,6 @@ MODEL_CHOICES = tuple(MODEL_DEFAULTS) + ROBOT_MODELS
 _PKG_REF = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_-]*$")          # what catkin accepts for an existing package
 _NODE_NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")             # a ROS graph name (one segment)
 _NODE_TYPE = re.compile(r"^[A-Za-z0-9_][A-Za-z0-9_.+-]*$")       # an executable's file name
-
-
-@dataclass(frozen=True)
-class NodeRef:
-    """A node started by a launch file: ``pkg/type`` run under ``name`` (in namespace ``ns`` when read back),
-    with what roslaunch gives it besides: ``args``, its ``<remap>``s (``from``, ``to``) and ``<env>``s, and whether
-    it is ``required`` (its exit ends the launch) or ``respawn`` (started again when it exits)."""
-
-    package: str
-    type: str
-    name: str
-    ns: str = "/"
-    args: str | None = None
-    line: int | None = None
-    remaps: tuple = ()
-    env: tuple = ()
-    required: bool = False
-    respawn: bool = False
-
-    @property
-    def full_name(self) -> str:
-        return join_ns(self.ns, self.name)
 
 
 def parse_node(text: str) -> NodeRef:
@@ -92,14 +70,6 @@ def check_world_name(world_file_name: str) -> str:
         raise InputError(f"world file name {world_file_name!r} cannot be passed to Gazebo",
                          hint="rename the world file: letters, digits, '_', '-' and '.' only")
     return world
-
-
-def join_ns(ns: str, name: str) -> str:
-    """The full graph name of ``name`` in namespace ``ns`` (``/`` + segments; an absolute ``name`` stays)."""
-    if name.startswith("/"):
-        return "/" + name.strip("/")
-    parts = [p for p in ns.split("/") + name.split("/") if p]
-    return "/" + "/".join(parts)
 
 
 # ---------------------------------------------------------------------------------------------------------------
@@ -144,17 +114,3 @@ def package_name_of(pkg_dir: str | Path) -> str:
     pkg_dir = Path(pkg_dir)
     name = manifest_name(pkg_dir / "package.xml")
     return name or pkg_dir.resolve().name
-
-
-def package_world_files(pkg_dir: str | Path, world_name: str, world_text: str, spawn: Sequence[float],
-                        model: str = "optenv") -> dict[Path, str]:
-    """The files that put a built world into a catkin package: ``worlds/NAME.world`` and
-    ``launch/turtlebot3_in_NAME.launch`` (path → text, for :func:`worldgen.core.fsio.write_files`)."""
-    pkg_dir = Path(pkg_dir)
-    world_file = f"{world_name}.world"
-    launch_name = default_launch_name(world_file)
-    package = check_package_ref(package_name_of(pkg_dir))
-    return {pkg_dir / "worlds" / world_file: world_text,
-            pkg_dir / "launch" / launch_name: launch_xml(world_file, package, model, spawn,
-                                                          launch_name=launch_name)}
-

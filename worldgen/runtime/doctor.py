@@ -2,8 +2,8 @@
 
 Given node files or folders (a class's submissions: the ``.py`` files in them, and every catkin package's
 ``scripts/`` and ``nodes/``, packages found as ``validate`` and ``run`` find them), each node's imports are
-looked up for the Python that runs the nodes (:mod:`.runtime_check`); given nothing, the class runtime
-(:data:`~worldgen.ros.runtime.CLASS_RUNTIME`) is. The report is a table — module, needed by, provided by (Debian /
+looked up for the Python that runs the nodes (:mod:`.check`); given nothing, the class runtime
+(:data:`~worldgen.runtime.table.CLASS_RUNTIME`) is. The report is a table — module, needed by, provided by (Debian /
 ROS Noetic), state — then what apt cannot fix (a node that does not parse, the workspace's own unbuilt packages,
 modules worldgen knows no package for), then exactly one ``sudo apt-get install`` line with every package
 missing, sorted. The same inputs give the same report.
@@ -22,8 +22,8 @@ from typing import Mapping, Sequence
 
 from ..core.errors import InputError
 from ..core.findings import Finding
-from .runtime import provider, runtime_modules
-from .runtime_check import OK_STATES, ask, findings, survey
+from .table import provider, runtime_modules
+from .check import OK_STATES, ask, findings, survey
 
 MAX_NODES = 5000   # files taken from one folder (a folder as big as a disk stops there)
 RUNTIME = "class runtime"

@@ -5,7 +5,7 @@ them: it parses them with :mod:`ast` and works out what can be known by reading 
 order, ``+`` on strings and lists, f-strings, ``%`` and ``.format``, ``os.path`` and ``pathlib`` arithmetic,
 ``os.environ`` look-ups, calls of functions defined in the same file (followed, a few levels deep), and the calls
 the caller teaches it (``Ctx.calls``: ``LaunchConfiguration``, ``get_package_share_directory``, ``glob`` …; the
-standard library's part is :mod:`.pystdlib`). Whatever else — a call it does not know, a name bound in a loop, a
+standard library's part is :mod:`.stdlib`). Whatever else — a call it does not know, a name bound in a loop, a
 condition it cannot tell — is an :class:`Unknown` that says what and at which line, never a guess.
 
 Code that is not run (a loop's body, both branches of a condition that cannot be told, ``except`` blocks,
@@ -20,9 +20,9 @@ from pathlib import Path
 from typing import Any, List
 
 from ..core.errors import WorldFileError
-from .pystdlib import binary, call_method, call_named, compare, format_value, module_attribute, subscript, \
+from .stdlib import binary, call_method, call_named, compare, format_value, module_attribute, subscript, \
     value_attribute
-from .pyvalues import (MAX_CALL_DEPTH, MAX_CALLS, MAX_DEPTH, MAX_PYTHON_BYTES, MAX_WORK, Call, Ctx, Frame,
+from .values import (MAX_CALL_DEPTH, MAX_CALLS, MAX_DEPTH, MAX_PYTHON_BYTES, MAX_WORK, Call, Ctx, Frame,
                        Function, Returned, Symbol, Unknown, describe, first_unknown, not_run, shown, sized, truth)
 
 

@@ -1,7 +1,7 @@
 """Reading launch files back: the world, the robot model and every spawn pose they start.
 
-A ROS 2 Python launch file (``*.launch.py``, ``*_launch.py``) is read by :mod:`.launch_py_reader` (statically,
-never run) into the same :class:`~.launch_info.LaunchInfo`; everything below is about roslaunch XML files.
+A ROS 2 Python launch file (``*.launch.py``, ``*_launch.py``) is read by :mod:`.reader_py` (statically,
+never run) into the same :class:`~.model.LaunchInfo`; everything below is about roslaunch XML files.
 
 :func:`read_launch` evaluates a launch file the way roslaunch does for what matters here — args and their
 defaults, ``$(arg)``/``$(env)``/``$(optenv)``/``$(find)``/``$(dirname)``/``$(anon)``, groups and namespaces,
@@ -10,8 +10,8 @@ pose, with findings for whatever cannot be resolved instead of failing. ``$(find
 holding the launch file, then its sibling packages in the same catkin source tree, then ``ROS_PACKAGE_PATH``
 (see :mod:`worldgen.core.packages`).
 
-The substitutions and conditions are :mod:`.substitution`'s; the walk over a file's elements, following
-includes, is :mod:`.launch_walk`'s; what is found is a :class:`~.launch_info.LaunchInfo`.
+The substitutions and conditions are :mod:`.substitution_xml`'s; the walk over a file's elements, following
+includes, is :mod:`.walk_xml`'s; what is found is a :class:`~.model.LaunchInfo`.
 """
 
 from __future__ import annotations
@@ -22,9 +22,9 @@ from pathlib import Path
 from typing import Mapping, Sequence
 
 from ..core import packages as rospkg
-from .launch_info import LaunchInfo
-from .launch_walk import LaunchRead, load_launch
-from .substitution import Lookup, Scope
+from .model import LaunchInfo
+from .walk_xml import LaunchRead, load_launch
+from .substitution_xml import Lookup, Scope
 
 
 def package_index(launch_path: str | Path, ros_package_path: Sequence[str | Path] | None = None
@@ -42,7 +42,7 @@ def read_launch(path: str | Path, args: Mapping[str, str] | None = None, *,
                 ros_package_path: Sequence[str | Path] | None = None,
                 environ: Mapping[str, str] | None = None) -> LaunchInfo:
     """Read a roslaunch XML file: world, robot model, spawn poses, args, nodes (see :class:`LaunchInfo`); a ROS 2
-    Python launch file is read by :func:`.launch_py_reader.read_launch_py`.
+    Python launch file is read by :func:`.reader_py.read_launch_py`.
 
     ``args`` are command-line overrides (``x_pos:=1.5`` → ``{"x_pos": "1.5"}``); ``ros_package_path`` and
     ``environ`` default to the process's. Raises WorldFileError (with the line) for a file roslaunch could not
@@ -54,7 +54,7 @@ def read_launch(path: str | Path, args: Mapping[str, str] | None = None, *,
     path = Path(path)
     environ = os.environ if environ is None else environ
     if is_python_launch(path):
-        from .launch_py_reader import read_launch_py
+        from .reader_py import read_launch_py
 
         return read_launch_py(path, args, finder=package_index(path, ros_package_path), environ=environ)
     read = LaunchRead(Lookup(package_index(path, ros_package_path), environ), LaunchInfo(path=path))

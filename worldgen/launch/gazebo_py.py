@@ -2,7 +2,7 @@
 ``world`` argument, ros_gz_sim's ``gz_sim.launch.py`` ``gz_args``, or a ``gazebo``/``gz sim`` command line) and
 the robots it spawns (gazebo_ros's ``spawn_entity.py`` and ros_gz_sim's ``create`` with ``-x -y -z -Y``).
 
-Plain functions over plain strings, so each rule can be tested alone; :mod:`.launch_py_reader` hands them the
+Plain functions over plain strings, so each rule can be tested alone; :mod:`.reader_py` hands them the
 values it has resolved.
 """
 

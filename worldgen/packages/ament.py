@@ -8,7 +8,7 @@ buildtool dependency), ``setup.py``, ``setup.cfg`` (scripts into ``lib/NAME``, w
 tests. Its defaults too: version 0.0.0, description "TODO: Package description", license "TODO: License
 declaration", the current user as maintainer (``USER@todo.todo``); and it refuses a package named ``test``.
 
-Added for the class, as :mod:`worldgen.ros.scaffold` adds them to a catkin package: ``launch/`` and ``worlds/``
+Added for the class, as :mod:`worldgen.packages.catkin` adds them to a catkin package: ``launch/`` and ``worlds/``
 folders (Jazzy: ``params/`` for the bridge too) that ``setup.py`` installs to ``share/NAME/`` — every file in
 them, found again at each build, so files added later install too — and nodes as modules ``NAME/NODE.py`` with
 ``console_scripts`` entry points ``NODE = NAME.NODE:main``. A package with launch files exec_depends on what they
@@ -27,9 +27,9 @@ from typing import Mapping
 
 from ..core.errors import InputError
 from ..core.resources import render_template
-from .launch_py import check_ros2, world_package_files
-from .scaffold import PackageFiles, PackageRequest, package_request, world_from_spec
-from .targets import world_text
+from ..launch.writer_py import check_ros2, world_package_files
+from .catkin import PackageFiles, PackageRequest, package_request, world_from_spec
+from ..launch.targets import world_text
 
 TEST_DEPENDS = ("ament_copyright", "ament_flake8", "ament_pep257", "python3-pytest")
 # What the launch files start, per target (exec_depend): Gazebo and its ROS side, the state publisher, xacro for
@@ -164,7 +164,7 @@ def create_ament_package(parent: str | Path, req: PackageRequest, ros: str, *,
     ``world_spec`` its world, launch file (and Jazzy's bridge parameters) too. An existing folder is refused
     unless ``force`` (then it is replaced)."""
     from ..core.fsio import check_free, write_tree
-    from .targets import cmd_vel_type
+    from ..launch.targets import cmd_vel_type
 
     check_ros2(ros)
     cmd_vel_type(ros, cmd_vel)
