@@ -92,8 +92,8 @@ def test_image_camera_info_and_compressed_as_gazebos_plugin(waffle_pi_sim):
 def scene_sim(tmp_path_factory):
     need_camera()
     from worldgen.core.scene import Scene, Shape
-    from worldgen.bridge.gazebo_types import gazebo_msgs_path
-    from worldgen.bridge.master import node_names
+    from worldgen.ros1.gazebo_types import gazebo_msgs_path
+    from worldgen.ros1.master import node_names
     from worldgen.bridge.world import World, write_config
 
     tmp = tmp_path_factory.mktemp("camera_scene")
@@ -114,7 +114,7 @@ def scene_sim(tmp_path_factory):
                           gazebo_msgs=gazebo_msgs_path())
     core, env = start_roscore(tmp)
     env = dict(env, PYTHONPATH=str(REPO))
-    node = subprocess.Popen([sys.executable, "-m", "worldgen.bridge.node", str(config)], env=env,
+    node = subprocess.Popen([sys.executable, "-m", "worldgen.ros1.node", str(config)], env=env,
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
         deadline = time.monotonic() + 30

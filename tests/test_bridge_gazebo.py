@@ -30,7 +30,7 @@ def test_generated_gazebo_msgs_match_gazebos_md5sums(tmp_path):
 
     env = dict(os.environ, WORLDGEN_CACHE=str(tmp_path / "cache"))
     code = ("import json, sys\n"
-            "from worldgen.bridge.gazebo_types import gazebo_msgs_path\n"
+            "from worldgen.ros1.gazebo_types import gazebo_msgs_path\n"
             "sys.path.insert(0, gazebo_msgs_path())\n"
             "import gazebo_msgs.msg as m, gazebo_msgs.srv as s\n"
             "print(json.dumps({f'{k}/{n}': getattr(mod, n)._md5sum for k, mod in (('msg', m), ('srv', s))"

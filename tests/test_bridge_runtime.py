@@ -55,12 +55,12 @@ def student_node(folder, missing: str):
 @pytest.fixture
 def nothing_may_start(monkeypatch):
     """Fails the test if a run gets as far as starting a master and the simulator."""
-    import worldgen.bridge.run as bridge_run
+    import worldgen.ros1.transport as ros1
 
     def refuse(*args, **kwargs):
         raise AssertionError("run_nodes was called: a master and the simulator would have started")
 
-    monkeypatch.setattr(bridge_run, "run_nodes", refuse)
+    monkeypatch.setattr(ros1, "run_nodes", refuse)
 
 
 def test_a_missing_module_is_a_finding_and_nothing_starts(tag, tmp_path, nothing_may_start):

@@ -19,9 +19,10 @@ SPAWN = (1.0, 0.5, math.pi / 2)   # facing the +y wall of the 5 m room, off-cent
 
 def run_still(duration: float, no_hit: str = "inf", record_scans: bool = False):
     """A run of the stand-still node in the enclosed room from :data:`SPAWN` at rate max."""
-    from worldgen.bridge.nodes import resolve_nodes
-    from worldgen.bridge.rosenv import node_python
-    from worldgen.bridge.run import RunOptions, run_nodes
+    from worldgen.ros1.nodes import resolve_nodes
+    from worldgen.ros1.rosenv import node_python
+    from worldgen.bridge.outcome import RunOptions
+    from worldgen.ros1.run import run_nodes
     from worldgen.bridge.world import load_world
 
     world = load_world(ROOM, spawn=SPAWN)

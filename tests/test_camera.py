@@ -245,7 +245,7 @@ def test_a_model_spawned_from_sdf_shows_in_its_material_colour(red_box_session):
     """What spawn_sdf_model does (the SDF reader's visuals, placed at the request's pose): a green can, then gone."""
     from types import SimpleNamespace as Msg
 
-    from worldgen.bridge.spawner import OK, spawn_model
+    from worldgen.ros1.spawner import OK, spawn_model
 
     session, _, _ = red_box_session
     sdf = ("<sdf version='1.6'><model name='can'><static>true</static><link name='l'>"

@@ -373,7 +373,7 @@ def test_doctor_with_no_argument_checks_the_class_runtime(monkeypatch):
     text = CliRunner().invoke(main, ["doctor"]).stdout.splitlines()
     assert text[0].startswith(f"worldgen doctor: the class runtime, for {sys.executable} (Python ")
     assert text[0].endswith("rospy found" if doc["rospy"] else "rospy MISSING: no node can run")
-    from worldgen.bridge.preflight import noetic
+    from worldgen.ros1.transport import noetic
 
     missing = sorted({m["noetic" if noetic() else "debian"] for m in doc["modules"] if m["state"] == "MISSING"})
     assert result.exit_code == (1 if missing else 0)

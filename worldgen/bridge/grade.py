@@ -15,21 +15,28 @@ from __future__ import annotations
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
+from ..check.discover import shard as take_shard
 from ..check.report import Result
 from ..core.errors import InputError, WorldgenError
 from ..core.findings import Finding
+from ..core.packages import crawl
+from ..core.resources import examples_dir
+from .outcome import RunRequest
+from .preflight import blocked_result, many_findings
+from .report import result_of, task_context
+from .supervise import stop_everything
+from .transport import Transport
+from .world import load_world
 
 TASK_NODES = {"stop-at-wall": "stop_at_wall.py", "spin": "spin_in_circles.py", "drive-square": "drive_square.py",
               "wall-follow": "wall_follower.py", "person-follow": "person_follower.py",
               "line-follow": "line_follower.py"}
-MASTER_TRIES = 3
+START_TRIES = 3
 
 
 def submissions(folder: Path) -> list[Path]:
     """The catkin packages under ``folder`` (crawled as rospack does; a workspace through its ``src/`` only),
     else its subfolders; sorted."""
-    from ..core.packages import crawl
-
     found = [p for p in crawl(folder, workspaces=True) if p != folder]
     if not found:
         found = [p for p in folder.iterdir() if p.is_dir() and not p.name.startswith(".")]
@@ -51,37 +58,26 @@ def node_of(submission: Path, task: str | None, names: list[str]) -> Path:
                      path=submission, hint="name the node file after the task, or give its name after the folder")
 
 
-def grade_folder(folder: Path, world_path: Path | None, *, task, target, duration, rate, spawn, robot, no_hit, jobs,
-                 nodes=(), shard: tuple[int, int] | None = None, launch=None, each=None) -> list[Result]:
-    """One result per submission in ``folder`` (each run in its own master, ``jobs`` at once); with ``shard``
+def grade_folder(folder: Path, world_path: Path | None, request: RunRequest, transport: Transport, *, jobs: int = 1,
+                 nodes=(), shard: tuple[int, int] | None = None, each=None) -> list[Result]:
+    """One result per submission in ``folder`` (each run on its own, ``jobs`` at once); with ``shard``
     (K, N), only the K-th of N stable shares of the submissions (:func:`worldgen.check.discover.shard`).
     ``each(result, world, trace)`` is called for every run that ran, with every scan recorded (a replay page)."""
-    from ..core.resources import examples_dir
-    from .preflight import blocked_result, many_findings
-    from .report import result_of, task_context
-    from .rosenv import import_rospy, node_python
-    from .rubrics import person_loop
-    from .run import RunOptions, parse_duration
-    from .supervise import stop_everything
-    from .world import load_world
-
-    import_rospy()
-    python = node_python()
-    world = load_world(world_path or examples_dir() / "enclosed_room.yaml", spawn=spawn, robot=robot, launch=launch)
+    python = transport.node_python()
+    world = load_world(world_path or examples_dir() / "enclosed_room.yaml", spawn=request.spawn,
+                       robot=request.robot, launch=request.launch)
+    task = request.task
     task_context(world, task)   # a line-follow world without tape, say: one line before anything starts
     found = submissions(folder)
     if not found:
         raise InputError("holds no submissions (no catkin packages, no folders)", path=folder,
                          hint="give the folder holding one folder or package per student")
     if shard is not None:
-        from ..check.discover import shard as take_shard
-
         found = take_shard(found, *shard, key=str)
-    options = RunOptions(duration=parse_duration(duration, task), rate=rate, no_hit=no_hit, task=task, target=target,
-                         person=person_loop(world.spawn) if task == "person-follow" else None,
-                         record_scans=each is not None)
-    planned = {s: _plan(s, task, nodes, python) for s in found}
-    missing = many_findings({str(s): p[1] for s, p in planned.items() if not isinstance(p, WorldgenError)}, python)
+    options = request.options(world, record_scans=each is not None)
+    planned = {s: _plan(s, task, nodes, python, transport) for s in found}
+    missing = many_findings({str(s): p[1] for s, p in planned.items() if not isinstance(p, WorldgenError)}, python,
+                            apt_ros=transport.apt_ros())
 
     def one(submission: Path) -> Result:
         plan = planned[submission]
@@ -93,7 +89,7 @@ def grade_folder(folder: Path, world_path: Path | None, *, task, target, duratio
                 result = blocked_result(str(submission), world, missing[str(submission)], task)
                 result.metrics["node"] = str(node.relative_to(submission))
                 return result
-            outcome = _run(world, specs, options)
+            outcome = _run(world, specs, options, transport)
         except WorldgenError as err:
             result = Result(path=str(submission), spawn=world.spawn, spawn_source=f"from {world.spawn_source}",
                             robot=world.robot, robot_source=world.robot_source, checks=["node"])
@@ -101,7 +97,7 @@ def grade_folder(folder: Path, world_path: Path | None, *, task, target, duratio
             if task:
                 result.skipped[task] = "the node could not run"
             return result
-        result = result_of(str(submission), world, outcome, task, target)
+        result = result_of(str(submission), world, outcome, task, request.target)
         result.metrics["node"] = str(node.relative_to(submission))
         if each is not None:
             each(result, world, outcome.trace)
@@ -120,25 +116,21 @@ def grade_folder(folder: Path, world_path: Path | None, *, task, target, duratio
         pool.shutdown(wait=True)
 
 
-def _plan(submission: Path, task: str | None, names, python: str):
+def _plan(submission: Path, task: str | None, names, python: str, transport: Transport):
     """The submission's node file and the processes it starts, or the WorldgenError saying why it cannot run."""
-    from .nodes import resolve_nodes
-
     try:
         node = node_of(submission, task, list(names))
-        return node, resolve_nodes([str(node)], python)
+        return node, transport.resolve_nodes([str(node)], python)
     except WorldgenError as err:
         return err
 
 
-def _run(world, specs, options):
-    """One submission's run; a master that could not take its free port (another job's race) is tried again."""
-    from .run import run_nodes
-
-    for attempt in range(MASTER_TRIES):
+def _run(world, specs, options, transport: Transport):
+    """One submission's run; a start-up that lost a race for a port to another job is tried again."""
+    for attempt in range(START_TRIES):
         try:
-            return run_nodes(world, specs, options)
+            return transport.run_nodes(world, specs, options)
         except InputError as err:
-            if "rosmaster could not start" not in str(err) or attempt == MASTER_TRIES - 1:
+            if not any(text in str(err) for text in transport.retry) or attempt == START_TRIES - 1:
                 raise
     raise AssertionError("unreachable")

@@ -4,29 +4,18 @@ naming the package — found in a second, before any master or simulator starts 
 start-up and a robot that never moves.
 
 ``worldgen run`` refuses to start on such findings (:func:`blocked_result`); ``worldgen sim``, which starts no
-node, prints them for a launch file's nodes as warnings (:func:`launch_warnings`); ``worldgen doctor`` asks
-:func:`doctor_python` which Python to check.
+node, prints them for a launch file's nodes as warnings (:func:`worldgen.ros1.transport.launch_warnings`).
 """
 
 from __future__ import annotations
 
-import os
-import sys
 from pathlib import Path
 from typing import Mapping, Sequence
 
 from ..check.report import Result
-from ..core.errors import WorldgenError
 from ..core.findings import Finding
 from ..runtime.check import findings, survey
-from .nodes import NodeSpec
-
-
-def noetic() -> bool:
-    """Whether this system takes ROS from ROS's own apt repository (``ros-noetic-*`` names first)."""
-    from .rosenv import distro_package
-
-    return distro_package().startswith("ros-")
+from .outcome import NodeSpec
 
 
 def python_sources(specs: Sequence[NodeSpec], python: str) -> list[str]:
@@ -34,16 +23,18 @@ def python_sources(specs: Sequence[NodeSpec], python: str) -> list[str]:
     return [s.source for s in specs if s.source and len(s.command) >= 2 and s.command[0] == python]
 
 
-def node_findings(specs: Sequence[NodeSpec], python: str, env: Mapping[str, str] | None = None) -> list[Finding]:
-    """The ``runtime`` findings of the nodes ``specs`` (empty: every import is found)."""
+def node_findings(specs: Sequence[NodeSpec], python: str, env: Mapping[str, str] | None = None, *,
+                  apt_ros: bool = False) -> list[Finding]:
+    """The ``runtime`` findings of the nodes ``specs`` (empty: every import is found); ``apt_ros``: name ROS's
+    own apt packages (``ros-noetic-…``) rather than Debian's."""
     sources = python_sources(specs, python)
     if not sources:
         return []
-    return findings(survey(sources, python, env).reports, python, noetic())
+    return findings(survey(sources, python, env).reports, python, apt_ros)
 
 
-def many_findings(groups: Mapping[str, Sequence[NodeSpec]], python: str, env: Mapping[str, str] | None = None
-                  ) -> dict[str, list[Finding]]:
+def many_findings(groups: Mapping[str, Sequence[NodeSpec]], python: str, env: Mapping[str, str] | None = None,
+                  *, apt_ros: bool = False) -> dict[str, list[Finding]]:
     """:func:`node_findings` for several runs (a folder of submissions) with one child process: findings by
     the key of each group."""
     sources = {key: python_sources(specs, python) for key, specs in groups.items()}
@@ -51,8 +42,7 @@ def many_findings(groups: Mapping[str, Sequence[NodeSpec]], python: str, env: Ma
     if not files:
         return {key: [] for key in groups}
     by_file = {Path(r.path).resolve(): r for r in survey(files, python, env).reports}
-    flavour = noetic()
-    return {key: findings([by_file[Path(f).resolve()] for f in sources[key]], python, flavour) for key in groups}
+    return {key: findings([by_file[Path(f).resolve()] for f in sources[key]], python, apt_ros) for key in groups}
 
 
 def blocked_result(path: str, world, found: list[Finding], task: str | None) -> Result:
@@ -74,34 +64,3 @@ def blocked_text(result: Result, task: str | None, nodes: list[str]) -> str:
             lines.append(f"          fix: {f.fix}")
     lines.append(f"{task or 'run'}: FAIL")
     return "\n".join(lines) + "\n"
-
-
-def launch_warnings(launch: Path) -> list[str]:
-    """For ``worldgen sim`` with a launch file: a warning line per missing module of the launch file's own
-    nodes (those worldgen does not stand in for); nothing when they cannot be found or rospy is missing (sim
-    says so itself)."""
-    from .nodes import resolve_nodes
-    from .rosenv import node_python
-
-    try:
-        python = node_python()
-        found = node_findings(resolve_nodes([str(launch)], python), python)
-    except WorldgenError:
-        return []
-    return [f"worldgen sim: warning: {f.where}: {f.message}" + (f" (fix: {f.fix})" if f.fix else "")
-            for f in found]
-
-
-def doctor_python() -> str:
-    """The Python ``worldgen doctor`` checks: the one that runs nodes (see :func:`.rosenv.node_python`), or,
-    when none imports rospy, the one that would be tried first (so that its report shows rospy missing)."""
-    from .rosenv import ENV_PYTHON, SYSTEM_PYTHON, node_python
-
-    try:
-        return node_python()
-    except WorldgenError:
-        pass
-    for python in (os.environ.get(ENV_PYTHON), SYSTEM_PYTHON):
-        if python and os.access(python, os.X_OK):
-            return python
-    return sys.executable

@@ -8,7 +8,7 @@ import json
 import math
 
 from ..check.report import Result, _clean
-from .run import Outcome
+from .outcome import Outcome
 from .world import World
 
 

@@ -21,7 +21,7 @@ def doctor(paths, fmt):
 
     Exit 0: everything found; 1: something missing; 2: a path that does not exist.
     """
-    from ..bridge.preflight import doctor_python, noetic
+    from ..ros1.transport import doctor_python, noetic
     from ..runtime.doctor import check_machine, check_nodes, to_json, to_text
 
     python = doctor_python()

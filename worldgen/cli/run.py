@@ -7,9 +7,12 @@ from pathlib import Path
 
 import click
 
-from ..core.errors import EXIT_FAILED, EXIT_OK
+from ..bridge.outcome import Outputs, RunRequest, parse_rate
 from ..bridge.rubrics import TASKS
+from ..core.errors import EXIT_FAILED, EXIT_OK
 from .drive import FiniteFloat
+from .ros import cmd_vel_option, ros_option
+from .transports import transport_for
 
 
 @click.command("run", context_settings={"ignore_unknown_options": True})
@@ -50,8 +53,10 @@ from .drive import FiniteFloat
               help="A 3D page replaying the run (robot, path, scans, cmd_vel and distance plots, findings). With a "
                    "folder of submissions: a folder with an index page and one replay per submission.")
 @click.option("--force", is_flag=True, help="Overwrite existing --plot/--csv/--bag/--junit/--html files.")
-def run(world, nodes, task, target, duration, rate, spawn, launch_file, robot, robot_ns, folder_world, jobs, shard, fmt, junit, plot,
-        csv_path, bag, html, lidar_no_hit, force):
+@ros_option
+@cmd_vel_option
+def run(world, nodes, task, target, duration, rate, spawn, launch_file, robot, robot_ns, folder_world, jobs, shard, fmt,
+        junit, plot, csv_path, bag, html, lidar_no_hit, force, ros, cmd_vel):
     """Run NODE... (a .py file, PKG/TYPE, or a .launch file's nodes; `name:=value` after a node is its argument)
     on the simulated TurtleBot3 in WORLD, with a private ROS master, and report what the robot did. With --task,
     grade it: exit 0 pass, 1 fail.
@@ -60,17 +65,17 @@ def run(world, nodes, task, target, duration, rate, spawn, launch_file, robot, r
     and gets one result, as `validate` reports files.
     """
     from ..core.spawnpose import parse_spawn
-    from ..bridge.simcmd import parse_rate
-
     from ..check.discover import parse_shard
 
     if html is not None:
         from ..view.page import require_three
 
         require_three()
-    pace = parse_rate(rate)
+    transport = transport_for(ros, cmd_vel)
     shard_k_n = parse_shard(shard) if shard is not None else None
-    spawn_pose = parse_spawn(spawn) if spawn is not None else None
+    request = RunRequest(task=task, target=target, duration=duration, rate=parse_rate(rate), no_hit=lidar_no_hit,
+                         spawn=parse_spawn(spawn) if spawn is not None else None, robot=robot, launch=launch_file,
+                         robot_ns=robot_ns)
     if world.is_dir() and not (world / "model.sdf").is_file() and not (world / "model.config").is_file():
         from ..bridge.grade import grade_folder
 
@@ -84,9 +89,8 @@ def run(world, nodes, task, target, duration, rate, spawn, launch_file, robot, r
             def each(result, world_run, trace):
                 pages[result.path] = run_page(result, world_run, trace, back=BACK)
 
-        results = grade_folder(world, folder_world, task=task, target=target, duration=duration, rate=pace,
-                               spawn=spawn_pose, robot=robot, no_hit=lidar_no_hit, jobs=jobs, nodes=nodes,
-                               shard=shard_k_n, launch=launch_file, each=each)
+        results = grade_folder(world, folder_world, request, transport, jobs=jobs, nodes=nodes, shard=shard_k_n,
+                               each=each)
         if html is not None:
             from ..view.grades import write_report
 
@@ -105,10 +109,9 @@ def run(world, nodes, task, target, duration, rate, spawn, launch_file, robot, r
                          hint="give a file name such as run.html (a folder of pages is for a folder of submissions)")
     from ..bridge.single import run_single
 
-    result, text = run_single(world, nodes, task=task, target=target, duration=duration, rate=pace,
-                              spawn=spawn_pose, robot=robot, no_hit=lidar_no_hit, fmt=fmt, junit=junit, plot=plot,
-                              csv_path=csv_path, bag=bag, force=force, robot_ns=robot_ns, launch=launch_file,
-                              html=html, html_page=_replay_page(nodes) if html is not None else None)
+    outputs = Outputs(fmt=fmt, junit=junit, plot=plot, csv=csv_path, bag=bag, html=html, force=force,
+                      html_page=_replay_page(nodes) if html is not None else None)
+    result, text = run_single(world, nodes, request, outputs, transport)
     click.echo(text, nl=False)
     sys.exit(EXIT_OK if result.ok else EXIT_FAILED)
 

@@ -34,8 +34,8 @@ def sim(world, spawn, launch_file, robot, rate, duration, lidar_no_hit):
     nodes import that are not installed (see `worldgen doctor`).
     """
     from ..core.spawnpose import parse_spawn
-    from ..bridge.simcmd import parse_rate
-    from ..bridge.simcmd import sim as run_sim
+    from ..bridge.outcome import parse_rate
+    from ..ros1.simcmd import sim as run_sim
     from ..bridge.world import load_world
 
     pace = parse_rate(rate)
@@ -49,7 +49,7 @@ def _warn_about_launch_nodes(world: Path, launch_file: Path | None) -> None:
     """A launch file (WORLD or --launch): a warning on stderr per module its own nodes import that is not
     installed (sim starts no node, so it starts anyway)."""
     from ..check.validate import input_kind
-    from ..bridge.preflight import launch_warnings
+    from ..ros1.transport import launch_warnings
 
     launch = launch_file if launch_file is not None else world if input_kind(world) == "launch" else None
     if launch is not None:

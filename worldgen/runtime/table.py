@@ -7,7 +7,7 @@ checked with ``apt-cache policy`` on Debian 12 (bookworm); where Debian has no s
 says what to do instead (:attr:`Provider.note`). Message packages not listed follow a rule (:func:`provider`):
 ``X_msgs`` → ``python3-X-msgs`` / ``ros-noetic-X-msgs``, marked ``guessed`` since nobody checked that Debian has
 it. ``gazebo_msgs`` is never missing under worldgen: ``worldgen sim`` and ``worldgen run`` generate it (see
-:mod:`worldgen.bridge.gazebo_types`).
+:mod:`worldgen.ros1.gazebo_types`).
 
 :data:`CLASS_RUNTIME` is **the class runtime**: the Debian packages that give rospy nodes what a ROS Noetic
 desktop (``ros-noetic-desktop-full``) gives them — rospy and the common messages, tf and tf2, actionlib,

@@ -18,15 +18,15 @@ import os
 import sys
 import tempfile
 import time
-from dataclasses import dataclass, field
 from pathlib import Path
 
+from ..bridge.outcome import NodeSpec, Outcome, RunOptions, end_limit, launch_params, outcome_of
+from ..bridge.supervise import Child, Supervisor
+from ..bridge.world import World, write_config
 from ..core.errors import WorldgenError
-from ..core.findings import Finding
+from .gazebo_types import gazebo_msgs_path
 from .master import node_names, ros_env, set_param, start_master
-from .nodes import NodeSpec
-from .supervise import Child, Supervisor
-from .world import World, write_config
+from .rosenv import import_rospy
 
 START_PARAM = "/worldgen/start"
 UP_TIMEOUT = 15.0      # s of real time for the nodes to register
@@ -34,34 +34,9 @@ SETTLE = 0.3           # s after that for their topics to connect
 SIM_START_TIMEOUT = 30.0
 
 
-@dataclass
-class RunOptions:
-    duration: float = 20.0
-    rate: float = 1.0                # 0: as fast as it goes
-    no_hit: str = "inf"
-    task: str | None = None
-    target: float | None = None
-    bag: Path | None = None
-    person: dict | None = None
-    robot_ns: str | None = None      # the robot graded, of several (its namespace or model name)
-    record_scans: bool = False       # each robot's trace keeps every published scan (for a replay)
-
-
-@dataclass
-class Outcome:
-    """One run: the metrics, the findings about the nodes, the trace, and each node's output."""
-
-    metrics: dict
-    findings: list[Finding] = field(default_factory=list)
-    trace: dict = field(default_factory=dict)
-    logs: dict[str, str] = field(default_factory=dict)
-
-
 def with_gazebo_msgs(env: dict[str, str]) -> dict[str, str]:
     """``env`` with worldgen's generated gazebo_msgs on ``PYTHONPATH`` when the system has none (the simulator
     and the students' nodes both import it; see :mod:`.gazebo_types`)."""
-    from .gazebo_types import gazebo_msgs_path
-
     folder = gazebo_msgs_path()
     if folder is None:
         return env
@@ -80,8 +55,6 @@ def run_nodes(world: World, nodes: list[NodeSpec], options: RunOptions, base_env
     """Run ``nodes`` on the simulated robot in ``world`` (see the module docstring). Raises WorldgenError when the
     simulation itself cannot run (rospy missing, the world or robot cannot be loaded); a node's failure is a
     finding."""
-    from .rosenv import import_rospy
-
     import_rospy()
     with tempfile.TemporaryDirectory(prefix="worldgen_run_") as tmp_name, Supervisor() as supervisor:
         tmp = Path(tmp_name)
@@ -95,7 +68,7 @@ def run_nodes(world: World, nodes: list[NodeSpec], options: RunOptions, base_env
                               trace=str(trace_file), bag=str(options.bag) if options.bag else None,
                               start_param=START_PARAM, person=options.person, set_sim_time=False,
                               graded=options.robot_ns, record_scans=options.record_scans)
-        simulator = supervisor.start("simulator", [sys.executable, "-m", "worldgen.bridge.node", str(config)],
+        simulator = supervisor.start("simulator", [sys.executable, "-m", "worldgen.ros1.node", str(config)],
                                      _bridge_env(env), log=tmp / "simulator.log")
         _wait_for_simulator(simulator, uri)
         children = [supervisor.start(n.name, n.argv, dict(env, **n.env), log=tmp / f"node_{i}.log")
@@ -111,47 +84,7 @@ def run_nodes(world: World, nodes: list[NodeSpec], options: RunOptions, base_env
             raise WorldgenError(f"the simulation ended without a result: {simulator.last_error_line() or 'no output'}",
                                 hint="please report this to the worldgen developers")
         trace = json.loads(trace_file.read_text(encoding="utf-8"))
-        from .metrics import compute
-
-        outcome = Outcome(compute(trace), trace=trace, logs={c.name: c.output() for c in children})
-        if len(trace.get("robots") or []) > 1:   # several robots: each one's numbers, by namespace
-            outcome.metrics["robots"] = {r["ns"]: dict(compute(dict(r, timing=trace.get("timing"))), name=r["name"])
-                                         for r in trace["robots"]}
-            outcome.metrics["graded_robot"] = trace.get("ns")
-        outcome.findings += launch_findings(nodes, ended_by, outcome.metrics)
-        if ended_by is None and (trace.get("timing") or {}).get("interrupted"):
-            done = outcome.metrics.get("sim_time_s") or 0.0
-            outcome.findings.append(Finding(
-                "run", "error", f"the run was cut short at {done:.1f} of {options.duration:g} simulated seconds: "
-                                "the machine could not keep the pace in the time allowed",
-                fix="grade at a lower --rate, on a less loaded machine, or with fewer runs at once (-j)"))
-        outcome.findings += node_findings(nodes, children, alive, outcome.metrics)
-        return outcome
-
-
-def launch_params(nodes: list[NodeSpec]) -> dict:
-    """Every parameter the nodes' launch files set, in the order roslaunch sets them (a later file wins)."""
-    params: dict = {}
-    for node in nodes:
-        params.update(node.params)
-    return params
-
-
-def launch_findings(nodes: list[NodeSpec], ended_by: Child | None, metrics: dict) -> list[Finding]:
-    """What the launch files said about their parameters, nodes asked to respawn (not done here), and the
-    required node whose exit ended the run."""
-    findings: list[Finding] = []
-    for node in nodes:
-        findings += [f for f in node.notes if f not in findings]
-        if node.respawn:
-            findings.append(Finding("launch", "info", f"node {node.name} has respawn=\"true\": worldgen does not "
-                                                      "start it again when it exits", where=node.launch))
-    if ended_by is not None:
-        findings.append(Finding("launch", "info", f"required node {ended_by.name} exited at "
-                                                  f"{metrics.get('sim_time_s', 0.0):.1f} s of simulated time, "
-                                                  "which ends the run (as roslaunch stops everything)",
-                                where=next(n.launch for n in nodes if n.name == ended_by.name)))
-    return findings
+        return outcome_of(trace, nodes, children, alive, ended_by, options)
 
 
 def _wait_for_simulator(simulator: Child, uri: str) -> None:
@@ -184,8 +117,7 @@ def _wait_for_end(simulator: Child, options: RunOptions, required: list[Child], 
                   ) -> Child | None:
     """Until the simulator has run its duration (or a time limit); a required node that exits first stops the
     simulator (which then writes its trace) and is returned."""
-    limit = options.duration / options.rate * 1.5 + 30 if options.rate > 0 else options.duration * 2 + 60
-    deadline = time.monotonic() + limit
+    deadline = time.monotonic() + end_limit(options)
     while simulator.running and time.monotonic() < deadline:
         ended = next((c for c in required if not c.running), None)
         if ended is not None:
@@ -195,33 +127,3 @@ def _wait_for_end(simulator: Child, options: RunOptions, required: list[Child], 
     return None
 
 
-def node_findings(nodes: list[NodeSpec], children: list[Child], alive: dict[str, bool], metrics: dict
-                  ) -> list[Finding]:
-    """A node that exited with an error (the last line of its output says why), and no /cmd_vel at all."""
-    findings = []
-    for spec, child in zip(nodes, children):
-        rc = child.proc.returncode
-        if not alive[child.name] and rc not in (0, None):
-            last = child.last_error_line() or "no output"
-            how = f"exit code {rc}" if rc > 0 else f"killed by signal {-rc}"
-            findings.append(Finding("node", "error", f"node {spec.name} failed ({how}): {last}", where=spec.source,
-                                    fix="run it by hand against `worldgen sim` to see its whole output"))
-    if not metrics.get("cmd_vel_messages"):
-        names = ", ".join(n.name for n in nodes)
-        findings.append(Finding("node", "error", f"no message on /cmd_vel from {names}: the robot was never "
-                                                 "commanded", fix="publish geometry_msgs/Twist on cmd_vel"))
-    return findings
-
-
-def parse_duration(value: float | None, task: str | None) -> float:
-    from .rubrics import DEFAULT_DURATION
-
-    if value is not None:
-        return float(value)
-    return DEFAULT_DURATION.get(task or "", 20.0)
-
-
-def check_outputs(paths, force: bool) -> None:
-    from ..core.fsio import check_free
-
-    check_free([p for p in paths if p is not None], force)

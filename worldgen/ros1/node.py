@@ -26,57 +26,57 @@ services and ``/gazebo/model_states`` are :mod:`.gazebo_api`'s; ``reset_world`` 
 the robots back at their spawn poses (simulated time keeps running: rewinding ``/clock`` would throw every
 node's ``rospy.Rate``), ``pause_physics`` stops simulated time until ``unpause_physics``.
 
-``/clock`` goes out every other 1/240 s step, 120 Hz of simulated time: Gazebo's gazebo_ros publishes it at
-100 Hz, ``rospy.Rate`` loops up to 30 Hz wake within 8 ms of when they should, and publishing every step would
-double the clock traffic every node receives for nothing. The physics step stays the session's 1/240 s.
+What is due when, and the pace, are the step loop's (:mod:`worldgen.interface.loop`); what each message holds is
+the robot interface's (:mod:`worldgen.interface.robot`); this module puts them on rospy.
 
-``rate`` paces simulated time at that many times real time (:mod:`.pacing`); 0 runs as fast as it goes, and
-then, after each scan that some node listens to, waits (at most 50 ms of real time) for the ``/cmd_vel`` that
-answers it, so that a node reacting to scans reacts within the same scan period, as it does in Gazebo at real
-time. Camera pictures are drawn in the step they are due, so their cost slows the pace as any other work does.
-
-Run as ``python -m worldgen.bridge.node CONFIG.json`` (see :func:`main`); a trace of what the robot did is
+Run as ``python -m worldgen.ros1.node CONFIG.json`` (see :func:`main`); a trace of what the robot did is
 written to the config's ``trace`` file at the end, for :mod:`.metrics`.
 """
 
 from __future__ import annotations
 
 import json
+import math
 import os
 import sys
 import threading
 import time
 from pathlib import Path
 
-from .pacing import Backlog, Governor
+from ..bridge.world import model_name
+from ..core.errors import WorldgenError
+from ..core.scene import Scene
+from ..interface.camera import CameraIO
+from ..interface.loop import Wire, run_loop
+from ..interface.robot import RobotIO
+from ..interface.topics import topics as stack_topics
+from ..robots import robot_urdf
+from ..robots.profile import robot_profile
+from ..sim.session import Session
+from .camera_topics import CameraTopics
+from .gazebo_api import GazeboApi
+from .messages import fill, message_class
 from .robot_topics import RobotTopics
+from .rosenv import import_rospy
 
-CLOCK_EVERY = 2          # physics steps per /clock and /imu message
-ANSWER_WAIT = 0.05       # s of real time to wait for the cmd_vel answering a scan at rate max
 START_WAIT = 30.0        # s of real time to wait for the start signal
-PAUSED_CLOCK = 0.1       # s of real time between /clock messages while paused
 
 
-class Bridge:
+class Bridge(Wire):
     """The node's state: the session, the robots' topics, Gazebo's interface, and what was recorded."""
 
     def __init__(self, rospy, session, config: dict):
-        from nav_msgs.msg import Odometry
-        from rosgraph_msgs.msg import Clock
-        from sensor_msgs.msg import Imu, JointState, LaserScan
-        from tf2_msgs.msg import TFMessage
-
         self.rospy, self.session, self.config = rospy, session, config
-        self.msg = {"Clock": Clock, "LaserScan": LaserScan, "Odometry": Odometry, "TFMessage": TFMessage,
-                    "JointState": JointState, "Imu": Imu}
-        pub = rospy.Publisher
-        self.pubs = {"clock": pub("/clock", Clock, queue_size=10), "tf": pub("/tf", TFMessage, queue_size=100),
-                     "tf_static": pub("/tf_static", TFMessage, queue_size=10, latch=True)}
+        table = stack_topics("noetic")
+        self.pubs = {key: rospy.Publisher(t.name, message_class(t.type), queue_size=t.qos.depth,
+                                          latch=t.qos.transient_local)
+                     for key, t in table.items() if not t.per_robot}
         self.lock = threading.Lock()
         self.paused = False
         self.bag = None
         if config.get("bag"):
-            import rosbag
+            import rosbag   # Debian's, beside rospy: only when a bag is asked for
+
             self.bag = rosbag.Bag(config["bag"], "w")
         robots = config.get("robots") or [{}]
         self.robots: list[RobotTopics] = []
@@ -87,13 +87,12 @@ class Bridge:
                 mappings=entry.get("mappings"))
             if i == 0 and entry.get("name"):
                 robot.name = entry["name"]
-            self.robots.append(RobotTopics(rospy, self.msg, robot, entry.get("ns", "/"), self.tf_prefix(entry),
-                                           self.bag if i == 0 else None, self.lock,
-                                           record_scans=bool(config.get("record_scans"))))
+            io = RobotIO(robot, entry.get("ns", "/"), self.tf_prefix(entry), lock=self.lock,
+                         record_scans=bool(config.get("record_scans")))
+            self.robots.append(RobotTopics(rospy, io, self.bag if i == 0 else None))
             self.add_cameras(self.robots[-1])
-        self.graded = self._graded(config.get("graded"))
-        from .gazebo_api import GazeboApi
-
+        self.graded_topics = self._graded(config.get("graded"))
+        self.graded = self.graded_topics.io
         self.api = GazeboApi(rospy, self)
         self.trace = {"person": []}
         self.person = None
@@ -127,9 +126,10 @@ class Bridge:
 
     def add_robot(self, name: str, *, urdf: str, spawn, ns: str, z: float = 0.0) -> RobotTopics:
         robot = self.session.add_robot("burger", spawn, name=name, urdf=urdf, z=z)
-        topics = RobotTopics(self.rospy, self.msg, robot, ns, self.tf_prefix({"ns": ns}), None, self.lock,
-                             record_scans=bool(self.config.get("record_scans")))
-        topics.now = self.session.t
+        io = RobotIO(robot, ns, self.tf_prefix({"ns": ns}), lock=self.lock,
+                     record_scans=bool(self.config.get("record_scans")))
+        io.now = self.session.t
+        topics = RobotTopics(self.rospy, io)
         self.add_cameras(topics, strict=False)
         self.robots.append(topics)
         self.publish_static()
@@ -141,9 +141,6 @@ class Bridge:
         cameras = [c for c in topics.robot.profile.cameras if c.link in topics.robot.link_index]
         if not cameras:
             return
-        from ..core.errors import WorldgenError
-        from .camera_topics import CameraTopics
-
         try:
             self.session.open_cameras()
         except WorldgenError as err:
@@ -152,73 +149,79 @@ class Bridge:
             print(f"worldgen sim: warning: {topics.robot.name}'s camera publishes nothing: {err}", file=sys.stderr,
                   flush=True)
             return
-        topics.cameras = [CameraTopics(self.rospy, topics.robot, c, topics.ns, topics.prefix, self.session.time_step)
-                          for c in cameras]
+        topics.cameras = [CameraTopics(self.rospy, CameraIO(topics.robot, c, topics.ns, topics.io.prefix,
+                                                             self.session.time_step)) for c in cameras]
 
     def remove_robot(self, topics: RobotTopics) -> None:
         topics.close()
         self.robots.remove(topics)
-        self.removed.append(topics.result())
+        self.removed.append(topics.io.result())
         self.session.remove_robot(topics.robot)
         self.publish_static()
 
     def reset_world(self) -> None:
         """Every robot at its spawn pose, at rest, its command zero; world models where they started."""
         for topics in self.robots:
-            topics.robot.reset()
-            topics.last_velocity = None
+            topics.io.reset()
         self.session.models.reset()
 
-    # -- messages ------------------------------------------------------------------------------------------
+    # -- messages (the step loop's Wire) ---------------------------------------------------------------------
 
     def stamp(self):
         return self.rospy.Time.from_sec(self.session.t)
 
+    def shut_down(self) -> bool:
+        return self.rospy.is_shutdown()
+
+    def drain(self) -> None:
+        self.api.drain()
+
+    def commanded(self) -> bool:
+        return self.graded_topics.cmd_sub.get_num_connections() > 0
+
+    def _send(self, key: str, values: dict) -> None:
+        publisher = self.pubs[key]
+        publisher.publish(fill(publisher.data_class(), values, self.rospy))
+
     def publish_static(self) -> None:
-        stamp = self.stamp()
-        transforms = [tf for topics in self.robots for tf in topics.static_transforms(stamp)]
-        self.pubs["tf_static"].publish(self.msg["TFMessage"](transforms=transforms))
+        t = self.session.t
+        self._send("tf_static", {"transforms": [tf for topics in self.robots for tf in topics.static_transforms(t)]})
 
     def publish_clock(self) -> None:
-        self.pubs["clock"].publish(self.msg["Clock"](clock=self.stamp()))
+        self.pubs["clock"].publish(self.pubs["clock"].data_class(clock=self.stamp()))
 
     def publish_drive(self) -> None:
-        stamp, t = self.stamp(), self.session.t
+        t = self.session.t
         for topics in self.robots:
-            topics.now = t
-            topics.publish_drive(t, stamp, self.pubs["tf"])
+            topics.io.now = t
+            topics.publish_drive(t, self.pubs["tf"])
         if self.person is not None:
             self.trace["person"].append([t, *self.person_xy(t)])
 
     def publish_fast(self, dt: float) -> None:
         """What goes out every other step: /clock, each robot's /imu, Gazebo's model and link states."""
         self.publish_clock()
-        stamp = self.stamp()
         for topics in self.robots:
-            topics.publish_imu(dt, stamp)
+            topics.publish_imu(dt, self.session.t)
         self.api.publish_states()
 
     def publish_scans(self) -> bool:
         """Each robot's scan; True when some node listens to the graded robot's."""
-        stamp, listened = self.stamp(), False
+        listened = False
         for topics in self.robots:
-            topics.answered.clear()
-            heard = topics.publish_scan(self.session, stamp)
-            listened = listened or (heard and topics is self.graded)
+            topics.io.answered.clear()
+            heard = topics.publish_scan(self.session)
+            listened = listened or (heard and topics is self.graded_topics)
         return listened
 
     def publish_cameras(self, step: int) -> None:
         """The pictures due at physics step ``step`` that some node looks at."""
-        stamp = None
         for topics in self.robots:
             for camera in topics.cameras:
                 if step % camera.every == 0:
-                    stamp = stamp or self.stamp()
-                    camera.publish(self.session, stamp)
+                    camera.publish(self.session, self.session.t)
 
     def person_xy(self, t: float) -> tuple[float, float]:
-        import math
-
         p = self.config["person"]
         angle = p["phase"] + p["speed"] * t / p["loop_radius"]
         return (p["centre"][0] + p["loop_radius"] * math.cos(angle), p["centre"][1] + p["loop_radius"] * math.sin(angle))
@@ -228,13 +231,7 @@ class Bridge:
         under ``robots``."""
         graded = self.graded.result()
         return dict(graded, person=self.trace["person"], robot=self.config.get("robot") or "burger",
-                    robots=[t.result() for t in self.robots] + self.removed)
-
-
-def model_name(robot: str | None) -> str:
-    """The model name a robot gets in Gazebo's lists: ``turtlebot3_burger`` as the class's launch files spawn it."""
-    robot = robot or "burger"
-    return f"turtlebot3_{robot}" if robot in ("burger", "waffle", "waffle_pi") else "turtlebot3"
+                    robots=[t.io.result() for t in self.robots] + self.removed)
 
 
 def wait_for_start(rospy, bridge: Bridge, param: str) -> None:
@@ -243,67 +240,10 @@ def wait_for_start(rospy, bridge: Bridge, param: str) -> None:
     deadline = time.monotonic() + START_WAIT
     while time.monotonic() < deadline and not rospy.is_shutdown():
         bridge.publish_clock()
-        bridge.api.drain()
+        bridge.drain()
         if rospy.get_param(param, False):
             return
         time.sleep(0.02)
-
-
-def run_loop(rospy, bridge: Bridge, rate: float, duration: float | None, pids=()) -> dict:
-    """Step the session, publishing as the module docstring says, until ``duration`` simulated seconds have
-    passed (None: until shut down). Returns the timing numbers."""
-    s = bridge.session
-    end_step = None if duration is None else round(duration / s.time_step)
-    wall0, interrupted = time.monotonic(), False
-    bridge.publish_clock()
-    bridge.publish_drive()
-    try:
-        _steps(rospy, bridge, rate, end_step, list(pids))
-    except KeyboardInterrupt:
-        interrupted = True
-    wall = time.monotonic() - wall0
-    return {"sim_time_s": s.t, "wall_time_s": wall, "real_time_factor": s.t / wall if wall > 0 else None,
-            "interrupted": interrupted}
-
-
-def _steps(rospy, bridge: Bridge, rate: float, end_step: int | None, pids: list[int]) -> None:
-    backlog = Backlog(pids) if rate <= 0 and pids else None
-    try:
-        _step_loop(rospy, bridge, rate, end_step, backlog)
-    finally:
-        if backlog is not None:
-            backlog.stop()
-
-
-def _step_loop(rospy, bridge: Bridge, rate: float, end_step: int | None, backlog: Backlog | None) -> None:
-    s = bridge.session
-    dt = s.time_step
-    drive_every = s._update_every
-    scan_every = max(1, round(1.0 / (s.lidar.update_rate * dt))) if s.lidar is not None else 0
-    person = bridge.person
-    governor = Governor(rate, backlog)
-    step = 0
-    while not rospy.is_shutdown() and (end_step is None or step < end_step):
-        bridge.api.drain()
-        if bridge.paused:
-            bridge.publish_clock()   # the clock stands still
-            time.sleep(PAUSED_CLOCK)
-            governor = Governor(rate, backlog, s.t)   # paced afresh from where it stopped
-            continue
-        if person is not None:
-            s.move_body(person[0], *bridge.person_xy(s.t + dt))
-        s.run(dt)
-        step += 1
-        if step % CLOCK_EVERY == 0:
-            bridge.publish_fast(dt * CLOCK_EVERY)
-            governor.pace(s.t)
-        if step % drive_every == 0:
-            bridge.publish_drive()
-        bridge.publish_cameras(step)
-        if scan_every and step % scan_every == 0:
-            listened = bridge.publish_scans()
-            if rate <= 0 and listened and bridge.graded.cmd_sub.get_num_connections():
-                bridge.graded.answered.wait(ANSWER_WAIT)
 
 
 def _write_json(path: str, data: dict) -> None:
@@ -320,17 +260,12 @@ def main(argv: list[str]) -> int:
     (file or null), start_param (null: start at once), person (null or the loop), set_sim_time (bool),
     gazebo_msgs (a folder to import gazebo_msgs from, or null), record_scans (bool: every robot's trace gets
     ``lidar`` and every published scan under ``ranges``, see :meth:`.RobotTopics.publish_scan`)."""
-    from ..core.errors import WorldgenError
-    from ..core.scene import Scene
-    from .rosenv import import_rospy
-
     keep_freed_memory()
     config = json.loads(Path(argv[0]).read_text(encoding="utf-8"))
     if config.get("gazebo_msgs"):
         sys.path.insert(0, config["gazebo_msgs"])
     try:
         rospy = import_rospy()
-        from ..sim.session import Session
 
         first = (config.get("robots") or [{}])[0]
         session = Session(Scene.load(config["scene_file"]), first.get("robot") or config.get("robot") or "burger",
@@ -359,7 +294,7 @@ def main(argv: list[str]) -> int:
                 wait_for_start(rospy, bridge, config["start_param"])
             print("worldgen-sim: running", file=sys.stderr, flush=True)
             pids = rospy.get_param("/worldgen/pids", []) if config.get("start_param") else []
-            timing = run_loop(rospy, bridge, float(config.get("rate") or 0.0), config.get("duration"), pids)
+            timing = run_loop(bridge, float(config.get("rate") or 0.0), config.get("duration"), pids)
         except KeyboardInterrupt:
             pass
         finally:
@@ -370,9 +305,6 @@ def main(argv: list[str]) -> int:
 
 def _has_camera(session, config: dict) -> bool:
     """Whether any robot of the config has a camera (the first one is the session's)."""
-    from ..robots import robot_urdf
-    from ..robots.profile import robot_profile
-
     if session.main.profile.cameras:
         return True
     others = (config.get("robots") or [{}])[1:]

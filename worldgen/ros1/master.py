@@ -14,7 +14,7 @@ import xmlrpc.client
 from pathlib import Path
 
 from ..core.errors import InputError
-from .supervise import Child, Supervisor
+from ..bridge.supervise import Child, Supervisor
 
 CALLER = "/worldgen"
 START_TIMEOUT = 20.0   # s for a master to answer

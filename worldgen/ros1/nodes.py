@@ -12,39 +12,16 @@ from __future__ import annotations
 import os
 import re
 import shlex
-from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Sequence
 
+from ..bridge.outcome import NodeSpec
 from ..core.errors import InputError
 
 # Packages whose nodes worldgen itself stands in for when a launch file starts them.
 STAND_INS = frozenset({"gazebo_ros", "robot_state_publisher", "joint_state_publisher", "xacro", "rviz",
                        "turtlebot3_gazebo", "turtlebot3_description", "turtlebot3_bringup", "tf", "tf2_ros"})
 _PKG_TYPE = re.compile(r"^[A-Za-z][A-Za-z0-9_]*/[^/\s]+$")
-
-
-@dataclass
-class NodeSpec:
-    """One process to start: its display name, the command, and the ``name:=value`` arguments it gets; from a
-    launch file also the parameters that file sets (full name → value, set on the master before any node starts),
-    its environment, whether it is ``required`` (its exit ends the run, as it ends a roslaunch) or asked to
-    ``respawn`` (not done here), and the launch file's findings about them."""
-
-    name: str
-    command: list[str]
-    args: list[str] = field(default_factory=list)
-    source: str = ""
-    params: dict = field(default_factory=dict)
-    env: dict = field(default_factory=dict)
-    required: bool = False
-    respawn: bool = False
-    launch: str = ""          # the launch file and line that start it, for findings
-    notes: list = field(default_factory=list)
-
-    @property
-    def argv(self) -> list[str]:
-        return self.command + self.args
 
 
 def _group(items: Sequence[str]) -> list[tuple[str, list[str]]]:
@@ -139,7 +116,7 @@ def _package_node(item: str, python: str, search: Sequence[str | Path], args: li
 
 
 def _launch_nodes(path: Path, python: str, search: Sequence[str | Path], args: list[str]) -> list[NodeSpec]:
-    from ..ros.launch_reader import read_launch
+    from ..launch.reader import read_launch
 
     if not path.is_file():
         raise InputError("no such launch file", path=path, hint="check the path")

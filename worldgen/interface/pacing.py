@@ -20,9 +20,10 @@ BACKLOG = int(os.environ.get("WG_BACKLOG", "4096"))  # bytes unread by the nodes
 CHECK_EVERY = float(os.environ.get("WG_CHECK", "0.05"))  # s of real time between looks at the nodes' sockets
 
 
-def unread_bytes(pids: list[int]) -> int:
+def unread_bytes(pids: list[int], udp: bool = False) -> int:
     """Bytes waiting unread in the TCP sockets of processes ``pids`` (Linux: their socket inodes in /proc/PID/fd,
-    matched with the rx_queue column of /proc/net/tcp, and tcp6 when ROS uses IPv6); 0 where /proc cannot tell."""
+    matched with the rx_queue column of /proc/net/tcp, and tcp6 when ROS uses IPv6), or in their UDP sockets with
+    ``udp`` (DDS: /proc/net/udp and udp6); 0 where /proc cannot tell."""
     inodes = set()
     for pid in pids:
         try:
@@ -38,7 +39,10 @@ def unread_bytes(pids: list[int]) -> int:
     if not inodes:
         return 0
     total = 0
-    tables = ("/proc/net/tcp", "/proc/net/tcp6") if os.environ.get("ROS_IPV6") == "on" else ("/proc/net/tcp",)
+    if udp:
+        tables: tuple = ("/proc/net/udp", "/proc/net/udp6")
+    else:
+        tables = ("/proc/net/tcp", "/proc/net/tcp6") if os.environ.get("ROS_IPV6") == "on" else ("/proc/net/tcp",)
     for table in tables:
         try:
             lines = Path(table).read_text().splitlines()[1:]
@@ -55,8 +59,8 @@ class Backlog:
     """What the watched processes leave unread, measured every :data:`CHECK_EVERY` s in a thread of its own:
     ``sample`` is (when, bytes), the smaller of two looks in a row (what persists, not a message in flight)."""
 
-    def __init__(self, pids: list[int]):
-        self.pids = list(pids)
+    def __init__(self, pids: list[int], udp: bool = False):
+        self.pids, self.udp = list(pids), udp
         self.sample: tuple[float, int] | None = None
         self.stopped = threading.Event()
         self.thread = threading.Thread(target=self._watch, name="worldgen-backlog", daemon=True)
@@ -65,7 +69,7 @@ class Backlog:
     def _watch(self) -> None:
         previous = 0
         while not self.stopped.wait(CHECK_EVERY):
-            now = unread_bytes(self.pids)
+            now = unread_bytes(self.pids, self.udp)
             self.sample, previous = (time.monotonic(), min(now, previous)), now
 
     def stop(self) -> None:

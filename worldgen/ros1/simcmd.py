@@ -15,8 +15,8 @@ from urllib.parse import urlparse
 from ..core.errors import InputError
 from .master import master_answers, set_param, start_master
 from .gazebo_types import gazebo_msgs_path
-from .supervise import Supervisor
-from .world import World, write_config
+from ..bridge.supervise import Supervisor
+from ..bridge.world import World, write_config
 
 DEFAULT_URI = "http://localhost:11311"
 TOPICS = ("/clock /scan /odom /tf /tf_static /joint_states /imu /gazebo/model_states; subscribes /cmd_vel; "
@@ -53,7 +53,7 @@ def sim(world: World, *, rate: float, duration: float | None, no_hit: str,
                               set_sim_time=True)
         root = str(Path(__file__).resolve().parents[2])
         env["PYTHONPATH"] = os.pathsep.join(p for p in (root, env.get("PYTHONPATH")) if p)
-        child = supervisor.start("simulator", [sys.executable, "-m", "worldgen.bridge.node", str(config)], env,
+        child = supervisor.start("simulator", [sys.executable, "-m", "worldgen.ros1.node", str(config)], env,
                                  show_errors=True)
         x, y, yaw = world.spawn
         robots = [f"{r['ns']}: {r['robot']} at ({r['spawn'][0]:g}, {r['spawn'][1]:g}, {r['spawn'][2]:g})"
@@ -95,16 +95,3 @@ def check_cameras(world: World) -> list[str]:
     return [topic for c in profiles[0].cameras for topic in
             (camera_topic("/", c.camera_name, c.image_topic), camera_topic("/", c.camera_name, c.info_topic),
              camera_topic("/", c.camera_name, c.image_topic) + "/compressed")]
-
-
-def parse_rate(text: str) -> float:
-    """``--rate R|max`` → R (0 for max)."""
-    if text.strip().lower() == "max":
-        return 0.0
-    try:
-        value = float(text)
-    except ValueError:
-        value = float("nan")
-    if not (value > 0 and value < 1e6):
-        raise InputError(f"bad --rate value {text!r}", hint="give a positive number (1 = real time) or max")
-    return value

@@ -1,0 +1,187 @@
+"""A run, whatever its transport: the options it takes, the processes it starts (:class:`NodeSpec`), what came
+of it (:class:`Outcome`), and the findings about the nodes that every transport reports the same way."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ..core.errors import InputError
+from ..core.findings import Finding
+from ..core.fsio import check_free
+from .metrics import compute
+from .rubrics import DEFAULT_DURATION, person_loop
+from .supervise import Child
+
+
+@dataclass
+class NodeSpec:
+    """One process to start: its display name, the command, and the ``name:=value`` arguments it gets; from a
+    launch file also the parameters that file sets (full name → value, set on the master before any node starts),
+    its environment, whether it is ``required`` (its exit ends the run, as it ends a roslaunch) or asked to
+    ``respawn`` (not done here), and the launch file's findings about them."""
+
+    name: str
+    command: list[str]
+    args: list[str] = field(default_factory=list)
+    source: str = ""
+    params: dict = field(default_factory=dict)
+    env: dict = field(default_factory=dict)
+    required: bool = False
+    respawn: bool = False
+    launch: str = ""          # the launch file and line that start it, for findings
+    notes: list = field(default_factory=list)
+
+    @property
+    def argv(self) -> list[str]:
+        return self.command + self.args
+
+
+@dataclass
+class RunOptions:
+    duration: float = 20.0
+    rate: float = 1.0                # 0: as fast as it goes
+    no_hit: str = "inf"
+    task: str | None = None
+    target: float | None = None
+    bag: Path | None = None
+    person: dict | None = None
+    robot_ns: str | None = None      # the robot graded, of several (its namespace or model name)
+    record_scans: bool = False       # each robot's trace keeps every published scan (for a replay)
+
+
+@dataclass
+class Outcome:
+    """One run: the metrics, the findings about the nodes, the trace, and each node's output."""
+
+    metrics: dict
+    findings: list[Finding] = field(default_factory=list)
+    trace: dict = field(default_factory=dict)
+    logs: dict[str, str] = field(default_factory=dict)
+
+
+def launch_params(nodes: list[NodeSpec]) -> dict:
+    """Every parameter the nodes' launch files set, in the order roslaunch sets them (a later file wins)."""
+    params: dict = {}
+    for node in nodes:
+        params.update(node.params)
+    return params
+
+
+def launch_findings(nodes: list[NodeSpec], ended_by: Child | None, metrics: dict) -> list[Finding]:
+    """What the launch files said about their parameters, nodes asked to respawn (not done here), and the
+    required node whose exit ended the run."""
+    findings: list[Finding] = []
+    for node in nodes:
+        findings += [f for f in node.notes if f not in findings]
+        if node.respawn:
+            findings.append(Finding("launch", "info", f"node {node.name} has respawn=\"true\": worldgen does not "
+                                                      "start it again when it exits", where=node.launch))
+    if ended_by is not None:
+        findings.append(Finding("launch", "info", f"required node {ended_by.name} exited at "
+                                                  f"{metrics.get('sim_time_s', 0.0):.1f} s of simulated time, "
+                                                  "which ends the run (as roslaunch stops everything)",
+                                where=next(n.launch for n in nodes if n.name == ended_by.name)))
+    return findings
+
+
+def node_findings(nodes: list[NodeSpec], children: list[Child], alive: dict[str, bool], metrics: dict,
+                  cmd_type: str = "geometry_msgs/Twist") -> list[Finding]:
+    """A node that exited with an error (the last line of its output says why), and no /cmd_vel at all (the robot
+    takes ``cmd_type``)."""
+    findings = []
+    for spec, child in zip(nodes, children):
+        rc = child.proc.returncode
+        if not alive[child.name] and rc not in (0, None):
+            last = child.last_error_line() or "no output"
+            how = f"exit code {rc}" if rc > 0 else f"killed by signal {-rc}"
+            findings.append(Finding("node", "error", f"node {spec.name} failed ({how}): {last}", where=spec.source,
+                                    fix="run it by hand against `worldgen sim` to see its whole output"))
+    if not metrics.get("cmd_vel_messages"):
+        names = ", ".join(n.name for n in nodes)
+        findings.append(Finding("node", "error", f"no message on /cmd_vel from {names}: the robot was never "
+                                                 "commanded", fix=f"publish {cmd_type} on cmd_vel"))
+    return findings
+
+
+def parse_duration(value: float | None, task: str | None) -> float:
+    if value is not None:
+        return float(value)
+    return DEFAULT_DURATION.get(task or "", 20.0)
+
+
+def parse_rate(text: str) -> float:
+    """``--rate R|max`` → R (0 for max)."""
+    if text.strip().lower() == "max":
+        return 0.0
+    try:
+        value = float(text)
+    except ValueError:
+        value = float("nan")
+    if not (value > 0 and value < 1e6):
+        raise InputError(f"bad --rate value {text!r}", hint="give a positive number (1 = real time) or max")
+    return value
+
+
+def check_outputs(paths, force: bool) -> None:
+    check_free([p for p in paths if p is not None], force)
+
+
+def outcome_of(trace: dict, nodes: list[NodeSpec], children: list[Child], alive: dict[str, bool],
+               ended_by: Child | None, options: RunOptions, cmd_type: str = "geometry_msgs/Twist") -> Outcome:
+    """What a run came to, from the simulator's trace: the metrics (each robot's too, when there are several),
+    the launch files' and the nodes' findings, and a run the machine could not finish in time said so."""
+    outcome = Outcome(compute(trace), trace=trace, logs={c.name: c.output() for c in children})
+    if len(trace.get("robots") or []) > 1:   # several robots: each one's numbers, by namespace
+        outcome.metrics["robots"] = {r["ns"]: dict(compute(dict(r, timing=trace.get("timing"))), name=r["name"])
+                                     for r in trace["robots"]}
+        outcome.metrics["graded_robot"] = trace.get("ns")
+    outcome.findings += launch_findings(nodes, ended_by, outcome.metrics)
+    if ended_by is None and (trace.get("timing") or {}).get("interrupted"):
+        done = outcome.metrics.get("sim_time_s") or 0.0
+        outcome.findings.append(Finding(
+            "run", "error", f"the run was cut short at {done:.1f} of {options.duration:g} simulated seconds: "
+                            "the machine could not keep the pace in the time allowed",
+            fix="grade at a lower --rate, on a less loaded machine, or with fewer runs at once (-j)"))
+    outcome.findings += node_findings(nodes, children, alive, outcome.metrics, cmd_type)
+    return outcome
+
+
+def end_limit(options: RunOptions) -> float:
+    """Seconds of real time a run may take before it is cut short."""
+    return options.duration / options.rate * 1.5 + 30 if options.rate > 0 else options.duration * 2 + 60
+
+
+@dataclass(frozen=True)
+class RunRequest:
+    """What the command line asks of a run, before the world is read: the task and its numbers, the pace, and
+    the robot (``spawn``, ``robot``, ``launch`` override what the world says; ``robot_ns`` picks the graded one)."""
+
+    task: str | None = None
+    target: float | None = None
+    duration: float | None = None      # None: the task's default
+    rate: float = 1.0                  # 0: as fast as it goes
+    no_hit: str = "inf"
+    spawn: tuple | None = None
+    robot: str | None = None
+    launch: Path | None = None
+    robot_ns: str | None = None
+
+    def options(self, world, *, record_scans: bool = False) -> RunOptions:
+        return RunOptions(duration=parse_duration(self.duration, self.task), rate=self.rate, no_hit=self.no_hit,
+                          task=self.task, target=self.target, robot_ns=self.robot_ns, record_scans=record_scans,
+                          person=person_loop(world.spawn) if self.task == "person-follow" else None)
+
+
+@dataclass(frozen=True)
+class Outputs:
+    """The files one run writes besides its report, and the report's format."""
+
+    fmt: str = "text"
+    junit: Path | None = None
+    plot: Path | None = None
+    csv: Path | None = None
+    bag: Path | None = None
+    html: Path | None = None
+    html_page: object = None          # html_page(result, world, trace) -> bytes: the replay page's maker
+    force: bool = False

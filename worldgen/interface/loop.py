@@ -1,0 +1,117 @@
+"""The simulator's step loop, the same for every transport: step the physics and say what is due when.
+
+``/clock`` and the IMU go out every other 1/240 s step, 120 Hz of simulated time: Gazebo's gazebo_ros publishes the
+clock at 100 Hz, ``rospy.Rate`` and rclpy timer loops up to 30 Hz wake within 8 ms of when they should, and
+publishing every step would double the clock traffic every node receives for nothing. The drive plugins' messages
+go out at their update rate (30 Hz), the scans at the LiDAR's (5 Hz), the pictures at the camera's (30 Hz).
+
+``rate`` paces simulated time at that many times real time (:mod:`.pacing`); 0 runs as fast as it goes, and then,
+after each scan that some node listens to, waits (at most 50 ms of real time) for the ``cmd_vel`` that answers it,
+so that a node reacting to scans reacts within the same scan period, as it does in Gazebo at real time.
+
+The transport's simulator object (a :class:`Wire`) publishes; this module only decides when.
+"""
+
+from __future__ import annotations
+
+import time
+
+from .pacing import Backlog, Governor
+
+CLOCK_EVERY = 2          # physics steps per /clock and /imu message
+ANSWER_WAIT = 0.05       # s of real time to wait for the cmd_vel answering a scan at rate max
+PAUSED_CLOCK = 0.1       # s of real time between /clock messages while paused
+
+
+class Wire:
+    """What the loop asks of a transport's simulator (the ROS 1 and ROS 2 ones implement it): ``session`` (the
+    :class:`~worldgen.sim.session.Session`), ``paused``, ``person`` (a moving person's body and loop, or None),
+    ``graded`` (the :class:`~.robot.RobotIO` whose answers are waited for), and the methods below."""
+
+    session = None
+    paused = False
+    person = None
+    graded = None
+
+    def shut_down(self) -> bool:
+        raise NotImplementedError
+
+    def drain(self) -> None:
+        """Do what service calls asked, between two physics steps."""
+
+    def publish_clock(self) -> None:
+        raise NotImplementedError
+
+    def publish_fast(self, dt: float) -> None:
+        """/clock, each robot's IMU (``dt`` apart), and any per-step state topics."""
+        raise NotImplementedError
+
+    def publish_drive(self) -> None:
+        raise NotImplementedError
+
+    def publish_cameras(self, step: int) -> None:
+        raise NotImplementedError
+
+    def publish_scans(self) -> bool:
+        """Each robot's scan; True when some node listens to the graded robot's."""
+        raise NotImplementedError
+
+    def commanded(self) -> bool:
+        """Whether some node publishes the graded robot's velocity commands (worth waiting for an answer)."""
+        raise NotImplementedError
+
+    def person_xy(self, t: float) -> tuple[float, float]:
+        raise NotImplementedError
+
+
+def run_loop(wire: Wire, rate: float, duration: float | None, pids=(), *, udp: bool = False) -> dict:
+    """Step the session, publishing as the module docstring says, until ``duration`` simulated seconds have
+    passed (None: until shut down). ``pids``: the nodes whose unread messages pace a run at rate max (in their
+    TCP sockets, or UDP ones with ``udp``). Returns the timing numbers."""
+    s = wire.session
+    end_step = None if duration is None else round(duration / s.time_step)
+    wall0, interrupted = time.monotonic(), False
+    wire.publish_clock()
+    wire.publish_drive()
+    backlog = Backlog(list(pids), udp=udp) if rate <= 0 and pids else None
+    try:
+        _step_loop(wire, rate, end_step, backlog)
+    except KeyboardInterrupt:
+        interrupted = True
+    finally:
+        if backlog is not None:
+            backlog.stop()
+    wall = time.monotonic() - wall0
+    return {"sim_time_s": s.t, "wall_time_s": wall, "real_time_factor": s.t / wall if wall > 0 else None,
+            "interrupted": interrupted}
+
+
+def _step_loop(wire: Wire, rate: float, end_step: int | None, backlog: Backlog | None) -> None:
+    s = wire.session
+    dt = s.time_step
+    drive_every = s._update_every
+    scan_every = max(1, round(1.0 / (s.lidar.update_rate * dt))) if s.lidar is not None else 0
+    person = wire.person
+    governor = Governor(rate, backlog)
+    step = 0
+    while not wire.shut_down() and (end_step is None or step < end_step):
+        wire.drain()
+        if wire.paused:
+            wire.publish_clock()   # the clock stands still
+            time.sleep(PAUSED_CLOCK)
+            governor = Governor(rate, backlog, s.t)   # paced afresh from where it stopped
+            continue
+        if person is not None:
+            s.move_body(person[0], *wire.person_xy(s.t + dt))
+        s.run(dt)
+        step += 1
+        if step % CLOCK_EVERY == 0:
+            wire.publish_fast(dt * CLOCK_EVERY)
+            governor.pace(s.t)
+        if step % drive_every == 0:
+            wire.publish_drive()
+        wire.publish_cameras(step)
+        if scan_every and step % scan_every == 0:
+            listened = wire.publish_scans()
+            if rate <= 0 and listened and wire.commanded():
+                wire.graded.answered.wait(ANSWER_WAIT)

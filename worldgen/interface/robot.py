@@ -1,0 +1,200 @@
+"""One simulated robot as Gazebo's TurtleBot3 plugins present it, whatever the transport: the contents of its
+messages (odometry, tf, joint states, IMU, scan), what a velocity command does, and what it did (the trace
+:mod:`worldgen.bridge.metrics` reads).
+
+A robot in namespace ``ns`` has its topics under ``ns/`` (:func:`.topics.join`); every frame carries its tf prefix
+(:func:`.topics.frame`): the ``tf_prefix`` parameter found from its namespace upwards on ROS 1, else the namespace
+without slashes, gazebo_ros's rule. Message values are nested dicts in ROS 2's field names, times as float seconds
+(see :mod:`worldgen.interface`).
+"""
+
+from __future__ import annotations
+
+import math
+import threading
+import xml.etree.ElementTree as ET
+
+import numpy as np
+
+from ..sim.lidar import front_distance, lidar_info, scan_row
+from .topics import frame
+
+GRAVITY = 9.8
+ODOM_COV = [1e-5, 0, 0, 0, 0, 0, 0, 1e-5, 0, 0, 0, 0, 0, 0, 1e12, 0, 0, 0, 0, 0, 0, 1e12, 0, 0,
+            0, 0, 0, 0, 1e12, 0, 0, 0, 0, 0, 0, 1e-3]   # what gazebo_ros_diff_drive puts in both covariances
+
+
+def quat_rpy(roll: float, pitch: float, yaw: float):
+    cr, sr = math.cos(roll / 2), math.sin(roll / 2)
+    cp, sp = math.cos(pitch / 2), math.sin(pitch / 2)
+    cy, sy = math.cos(yaw / 2), math.sin(yaw / 2)
+    return (sr * cp * cy - cr * sp * sy, cr * sp * cy + sr * cp * sy, cr * cp * sy - sr * sp * cy,
+            cr * cp * cy + sr * sp * sy)
+
+
+def quat_mul(a, b):
+    ax, ay, az, aw = a
+    bx, by, bz, bw = b
+    return (aw * bx + ax * bw + ay * bz - az * by, aw * by - ax * bz + ay * bw + az * bx,
+            aw * bz + ax * by - ay * bx + az * bw, aw * bw - ax * bx - ay * by - az * bz)
+
+
+def axis_quat(axis, angle: float):
+    n = math.sqrt(sum(a * a for a in axis)) or 1.0
+    s = math.sin(angle / 2) / n
+    return (axis[0] * s, axis[1] * s, axis[2] * s, math.cos(angle / 2))
+
+
+def joint_axes(urdf: str) -> dict[str, tuple[float, float, float]]:
+    """Each joint's ``<axis xyz>`` (URDF's default 1 0 0 when absent)."""
+    axes = {}
+    for joint in ET.fromstring(urdf).findall("joint"):
+        axis = joint.find("axis")
+        text = axis.get("xyz") if axis is not None else None
+        axes[joint.get("name", "")] = tuple(float(v) for v in text.split()) if text else (1.0, 0.0, 0.0)
+    return axes
+
+
+def header(t: float, frame_id: str) -> dict:
+    return {"stamp": t, "frame_id": frame_id}
+
+
+def vector(xyz) -> dict:
+    return {"x": float(xyz[0]), "y": float(xyz[1]), "z": float(xyz[2])}
+
+
+def quaternion(q) -> dict:
+    return {"x": float(q[0]), "y": float(q[1]), "z": float(q[2]), "w": float(q[3])}
+
+
+class RobotIO:
+    """One robot's messages, commands and trace (see the module docstring). A transport calls :meth:`command`
+    from its own threads; everything else runs in the step loop."""
+
+    def __init__(self, robot, ns: str = "/", tf_prefix: str = "", *, record_scans: bool = False, lock=None):
+        self.robot, self.ns, self.prefix = robot, ns, tf_prefix
+        self.lock = lock or threading.Lock()
+        profile = robot.profile
+        self.base = profile.base_frame
+        self.axes = joint_axes(robot.urdf)
+        self.wheel_joints = {j.name: j for j in profile.joints
+                             if j.name in (profile.drive.left_joint, profile.drive.right_joint)}
+        self.imu_link = "imu_link" if "imu_link" in robot.link_index else self.base
+        self.trace: dict = {"odom": [], "scans": [], "cmd": []}
+        self.record_scans = record_scans and robot.lidar is not None
+        if self.record_scans:   # every published scan, for a replay (see scan)
+            self.trace.update(lidar=lidar_info(robot.lidar), ranges=[])
+        self.answered = threading.Event()   # set by each command: the answer to a scan at rate max
+        self.cmd_count = 0
+        self.last_velocity = None
+        self.now = 0.0
+
+    # -- in ------------------------------------------------------------------------------------------------
+
+    def command(self, v: float, w: float) -> bool:
+        """A velocity command into gazebo_ros_diff_drive's model; False (ignored) when not finite: the plugin
+        would take NaN and wreck the model, and a finding says the node sent it."""
+        v, w = float(v), float(w)
+        if not (math.isfinite(v) and math.isfinite(w)):
+            return False
+        self.robot.drive.command = (v, w)
+        with self.lock:
+            self.cmd_count += 1
+            self.trace["cmd"].append([self.now, v, w])
+        self.answered.set()
+        return True
+
+    def reset(self) -> None:
+        """Back at the spawn pose, at rest (reset_world)."""
+        self.robot.reset()
+        self.last_velocity = None
+
+    # -- out -----------------------------------------------------------------------------------------------
+
+    def transform(self, parent: str, child: str, xyz, quat, t: float) -> dict:
+        return {"header": header(t, frame(self.prefix, parent)), "child_frame_id": frame(self.prefix, child),
+                "transform": {"translation": vector(xyz), "rotation": quaternion(quat)}}
+
+    def static_transforms(self, t: float) -> list[dict]:
+        """The fixed joints of the description, as robot_state_publisher sends them on /tf_static."""
+        return [self.transform(j.parent, j.child, j.xyz, quat_rpy(*j.rpy), t)
+                for j in self.robot.profile.joints if j.type == "fixed"]
+
+    def drive(self, t: float, *, odom: bool, tf: bool, joint_states: bool) -> dict:
+        """The diff-drive plugin's update at ``t``: a line of the trace, and the messages asked for (``odom``,
+        ``tf``: the transforms of odom → base and the wheels, ``joint_states``)."""
+        r = self.robot
+        (x, y, z), quat = r.link_pose(r.base_index)
+        lin, ang = r.base_velocity()
+        yaw = math.atan2(2 * (quat[3] * quat[2] + quat[0] * quat[1]), 1 - 2 * (quat[1] ** 2 + quat[2] ** 2))
+        vx = math.cos(yaw) * lin[0] + math.sin(yaw) * lin[1]
+        vy = math.cos(yaw) * lin[1] - math.sin(yaw) * lin[0]
+        self.trace["odom"].append([t, x, y, yaw, vx, ang[2], *r.drive.command])
+        out: dict = {}
+        if odom:
+            twist = {"linear": vector((vx, vy, 0.0)), "angular": vector((0.0, 0.0, ang[2]))}
+            out["odom"] = {"header": header(t, frame(self.prefix, "odom")),
+                           "child_frame_id": frame(self.prefix, self.base),
+                           "pose": {"pose": {"position": vector((x, y, z)), "orientation": quaternion(quat)},
+                                    "covariance": ODOM_COV},
+                           "twist": {"twist": twist, "covariance": ODOM_COV}}
+        if tf or joint_states:
+            (pl, pr), (wl, wr) = r.wheel_states()
+        if tf:
+            transforms = [self.transform("odom", self.base, (x, y, z), quat, t)]
+            for joint, angle in zip((r.profile.drive.left_joint, r.profile.drive.right_joint), (pl, pr)):
+                j = self.wheel_joints.get(joint)
+                if j is not None:
+                    q = quat_mul(quat_rpy(*j.rpy), axis_quat(self.axes.get(joint, (0, 0, 1)), angle))
+                    transforms.append(self.transform(j.parent, j.child, j.xyz, q, t))
+            out["tf"] = transforms
+        if joint_states:
+            out["joint_states"] = {"header": header(t, ""),
+                                   "name": [r.profile.drive.left_joint, r.profile.drive.right_joint],
+                                   "position": [pl, pr], "velocity": [wl, wr], "effort": []}
+        return out
+
+    def imu(self, dt: float, t: float) -> dict:
+        """The IMU at ``t``: true orientation, body rates, and the acceleration (differenced over ``dt``) with
+        gravity, in the IMU link's frame."""
+        import pybullet as pb   # the simulation's own, already loaded
+
+        r = self.robot
+        lin, ang = r.base_velocity()
+        accel = (0.0, 0.0, 0.0)
+        if self.last_velocity is not None:
+            accel = tuple((a - b) / dt for a, b in zip(lin, self.last_velocity))
+        self.last_velocity = lin
+        _, quat = r.link_pose(self.imu_link)
+        rot = np.array(pb.getMatrixFromQuaternion(quat)).reshape(3, 3)
+        body_w = rot.T @ np.asarray(ang)
+        body_a = rot.T @ (np.asarray(accel) + np.array([0.0, 0.0, GRAVITY]))
+        return {"header": header(t, frame(self.prefix, self.imu_link)), "orientation": quaternion(quat),
+                "angular_velocity": vector(body_w.tolist()), "linear_acceleration": vector(body_a.tolist())}
+
+    def imu_unheard(self) -> None:
+        """No one listens to the IMU: the next acceleration starts afresh."""
+        self.last_velocity = None
+
+    def scan(self, session) -> dict:
+        """One scan at the session's time, and a line of the trace. Recording scans, the trace's ``ranges`` also
+        gets ``[t, ox, oy, yaw, [mm, …]]``, the ranges as published (:func:`worldgen.sim.lidar.scan_row`)."""
+        r = self.robot
+        scan = session.scan_of(r)
+        msg = {"header": header(session.t, frame(self.prefix, scan.frame_id)), "angle_min": scan.angle_min,
+               "angle_max": r.lidar.max_angle, "angle_increment": scan.angle_increment, "time_increment": 0.0,
+               "scan_time": 0.0, "range_min": scan.range_min, "range_max": scan.range_max, "ranges": scan.ranges,
+               "intensities": [0.0] * len(scan.ranges)}
+        true = [d for d in scan.true_ranges if math.isfinite(d)]
+        front = front_distance(scan, true=True)
+        first = scan.true_ranges[0]
+        self.trace["scans"].append([session.t, first if math.isfinite(first) else None, front,
+                                    min(true) if true else None, session.clearance_of(r)])
+        if self.record_scans:
+            self.trace["ranges"].append([round(session.t, 3), *scan_row(scan)])
+        return msg
+
+    def result(self) -> dict:
+        """This robot's part of the trace file."""
+        return dict(self.trace, cmd_vel_messages=self.cmd_count, contacts=self.robot.touches.to_list(),
+                    spawn=list(self.robot.spawn), ns=self.ns, name=self.robot.name)
