@@ -1,12 +1,13 @@
 """What both launch readers and the writers share: a node a launch file starts (:class:`NodeRef`) and its
 full name (:func:`join_ns`); what :func:`worldgen.launch.reader.read_launch` finds in a launch file (the world,
 the robots it spawns, its args, nodes and includes: :class:`LaunchInfo`); and the findings a read adds for
-whatever could not be resolved (:func:`note`, :func:`note_unresolved`)."""
+whatever could not be resolved (:class:`Findings`, with each reader's :class:`Fixes`)."""
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import ClassVar, FrozenSet, Optional
 
 from ..core.findings import Finding
 from ..core.spawnpose import Pose
@@ -92,3 +93,49 @@ class LaunchInfo:
     params: dict = field(default_factory=dict)
     includes: list[Path] = field(default_factory=list)
     findings: list[Finding] = field(default_factory=list)
+
+
+@dataclass(frozen=True)
+class Fixes:
+    """What a reader tells a student to do about a reference it could not resolve, by kind: a package
+    (``{package}`` filled in), an environment variable (``{env}``), a launch argument, and — for a reader whose
+    unknowns also come from code it cannot follow — ``static``. ``stock`` packages are missing on most machines
+    that are not robot PCs, so their absence is info rather than a warning."""
+
+    stock: FrozenSet[str]
+    find: str
+    env: str
+    arg: str
+    static: Optional[str] = None
+
+
+class Findings:
+    """The findings of one read of a launch file (both readers): ``note`` adds one at a file and line, each
+    once; ``unresolved`` turns what could not be resolved — anything with a ``reason`` and, when they are the
+    cause, the ``package`` or ``env`` missing — into a finding with the fix for its kind."""
+
+    info: LaunchInfo
+    FIXES: ClassVar[Fixes]
+
+    def note(self, check: str, severity: str, message: str, path: Path, line: int | None,
+             fix: str | None = None) -> None:
+        finding = Finding(check, severity, message, where=f"{path}:{line}" if line else str(path), fix=fix)
+        if finding not in self.info.findings:
+            self.info.findings.append(finding)
+
+    def unresolved(self, cause, what: str, path: Path, line: int | None) -> None:
+        """A finding for ``cause`` (nothing for code that is not run: that is reported where it is skipped)."""
+        if getattr(cause, "skipped", False):
+            return
+        fixes, reason = self.FIXES, cause.reason
+        if cause.package:
+            self.note("launch-find", "info" if cause.package in fixes.stock else "warning", f"{what}: {reason}",
+                      path, line, fixes.find.format(package=cause.package))
+        elif cause.env:
+            self.note("launch-env", "info", f"{what}: {reason}", path, line, fixes.env.format(env=cause.env))
+        elif fixes.static is None or reason.startswith("launch argument"):
+            self.note("launch-arg", "warning", f"{what}: {reason}", path, line, fixes.arg)
+        else:
+            at = getattr(cause, "line", None)
+            at = f" (line {at})" if at and at != line else ""
+            self.note("launch-static", "warning", f"{what}: {reason}{at}", path, line, fixes.static)

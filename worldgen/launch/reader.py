@@ -24,7 +24,7 @@ from typing import Mapping, Sequence
 from ..core import packages as rospkg
 from .model import LaunchInfo
 from .walk_xml import LaunchRead, load_launch
-from .substitution_xml import Lookup, Scope
+from .substitution_xml import Lookup
 
 
 def package_index(launch_path: str | Path, ros_package_path: Sequence[str | Path] | None = None
@@ -72,7 +72,7 @@ def read_launch(path: str | Path, args: Mapping[str, str] | None = None, *,
         try:
             info.spawn = tuple(float(info.args.get(k) or 0.0) for k in ("x_pos", "y_pos", "z_pos", "yaw"))
         except ValueError:
-            read.note("launch-spawn", "error", "x_pos/y_pos/z_pos/yaw are not numbers", Scope(path, {}, {}, "/"),
+            read.note("launch-spawn", "error", "x_pos/y_pos/z_pos/yaw are not numbers", path,
                       None, "give the spawn args numeric defaults")
     return info
 

@@ -13,9 +13,8 @@ from pathlib import Path, PurePosixPath
 from typing import Dict, List, Mapping, Optional
 
 from ..core.errors import WorldFileError
-from ..core.findings import Finding
 from ..core.packages import PackageIndex
-from .model import LaunchInfo
+from .model import Findings, Fixes, LaunchInfo
 from .values_py import Config, Subst
 from .walk_xml import STOCK_PACKAGES
 from ..pyread.stdlib import env_value
@@ -25,10 +24,16 @@ ROS2_STOCK = STOCK_PACKAGES | {"ros_gz_sim", "ros_gz_bridge", "ros_gz_image", "r
                                "robot_state_publisher"}
 STATIC_FIX = ("write it without loops or calls of other modules, with constants or DeclareLaunchArgument defaults "
               "(worldgen reads launch files, never runs them), or give the spawn with --spawn X,Y")
+ROS2_FIXES = Fixes(stock=ROS2_STOCK,
+                   find="put the package {package} in this workspace, or source the ROS 2 install that has it "
+                        "(AMENT_PREFIX_PATH)",
+                   env="export {env} (or give a default: os.environ.get({env!r}, …))",
+                   arg="pass it (name:=value) or give its DeclareLaunchArgument a default_value",
+                   static=STATIC_FIX)
 
 
 @dataclass
-class PyRead:
+class PyRead(Findings):
     """One read of a launch file and what it includes: what is found so far and the files being read."""
 
     finder: PackageIndex
@@ -42,6 +47,7 @@ class PyRead:
     top_args: Dict[str, object] = field(default_factory=dict)       # the top file's launch arguments
     steps: int = 0                                                   # actions and parts walked (see spend)
     open_lists: set = field(default_factory=set)                     # ids of the lists being walked or resolved
+    FIXES = ROS2_FIXES
 
     def spend(self, count: int, path: Path, line: int | None = None) -> None:
         """Count ``count`` more items walked or resolved: WorldFileError past MAX_WORK (lists that hold
@@ -51,30 +57,6 @@ class PyRead:
             raise WorldFileError(f"the launch file takes more work to read than worldgen does ({MAX_WORK:,} steps): "
                                  "its actions or substitutions are lists inside lists many times over", path=path,
                                  line=line, hint="build each action and list once; a launch file holds few")
-
-    def note(self, check: str, severity: str, message: str, path: Path, line: int | None, fix: str | None = None):
-        finding = Finding(check, severity, message, where=f"{path}:{line}" if line else str(path), fix=fix)
-        if finding not in self.info.findings:
-            self.info.findings.append(finding)
-
-    def unresolved(self, value: Unknown, what: str, path: Path, line: int | None) -> None:
-        """A finding for something that could not be read, with the fix for its kind (nothing for code that is
-        not run: that is reported where it is skipped)."""
-        if value.skipped:
-            return
-        at = f" (line {value.line})" if value.line and value.line != line else ""
-        if value.package:
-            self.note("launch-find", "info" if value.package in ROS2_STOCK else "warning", f"{what}: {value.reason}",
-                      path, line, f"put the package {value.package} in this workspace, or source the ROS 2 install "
-                                  "that has it (AMENT_PREFIX_PATH)")
-        elif value.env:
-            self.note("launch-env", "info", f"{what}: {value.reason}", path, line,
-                      f"export {value.env} (or give a default: os.environ.get({value.env!r}, …))")
-        elif value.reason.startswith("launch argument"):
-            self.note("launch-arg", "warning", f"{what}: {value.reason}", path, line,
-                      "pass it (name:=value) or give its DeclareLaunchArgument a default_value")
-        else:
-            self.note("launch-static", "warning", f"{what}: {value.reason}{at}", path, line, STATIC_FIX)
 
     def share(self, package: str, line: int | None):
         """The folder ``get_package_share_directory(package)`` names here, or an Unknown."""

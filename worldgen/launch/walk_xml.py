@@ -18,8 +18,7 @@ from pathlib import Path
 from typing import Callable, Dict, List, Optional
 
 from ..core.errors import WorldFileError
-from ..core.findings import Finding
-from .model import LaunchInfo, NodeRef, RobotSpawn, join_ns
+from .model import Findings, Fixes, LaunchInfo, NodeRef, RobotSpawn, join_ns
 from .params_xml import ParamError, load_yaml, param_name, rosparam_sets, set_value, storable, \
     typed_value
 from .substitution_xml import (ArgValue, Lookup, Scope, Unresolved, condition, expand, expand_lenient,
@@ -30,10 +29,14 @@ GAZEBO_FLAGS = {"-x": 0, "-y": 1, "-z": 2, "-Y": 3}
 MAX_INCLUDE_DEPTH = 16
 MAX_LAUNCH_FILES = 1000   # launch files read for one, counting each include of each (a fan-out grows exponentially)
 STOCK_PACKAGES = frozenset({"gazebo_ros", "xacro", "turtlebot3_description", "turtlebot3_gazebo"})
+ROS1_FIXES = Fixes(stock=STOCK_PACKAGES,
+                   find="put the package {package} in this catkin workspace or on ROS_PACKAGE_PATH",
+                   env="export {env} (or pass the arg on the command line)",
+                   arg="pass the arg (name:=value) or give it a default")
 
 
 @dataclass
-class LaunchRead:
+class LaunchRead(Findings):
     """One read of a launch file and its includes: what is found so far and the files being read."""
 
     lookup: Lookup
@@ -42,27 +45,7 @@ class LaunchRead:
     stack: List[Path] = field(default_factory=list)         # the files being read, outermost first
     raw_args: Dict[str, Optional[str]] = field(default_factory=dict)   # the top-level args as written
     loaded: int = 0                                          # launch files read so far, includes counted
-
-    def note(self, check: str, severity: str, message: str, scope: Scope, line: int | None, fix: str | None):
-        """A finding at ``scope``'s file and ``line`` (each one once)."""
-        where = f"{scope.path}:{line}" if line else str(scope.path)
-        finding = Finding(check, severity, message, where=where, fix=fix)
-        if finding not in self.info.findings:
-            self.info.findings.append(finding)
-
-    def unresolved(self, err: Unresolved, what: str, scope: Scope, line: int | None):
-        """A finding for a substitution that could not be evaluated, with the fix for its kind."""
-        if err.package:
-            # Gazebo's and the TurtleBot3's own packages are missing on most machines that are not robot PCs.
-            severity = "info" if err.package in STOCK_PACKAGES else "warning"
-            self.note("launch-find", severity, f"{what}: {err.reason}", scope, line,
-                      f"put the package {err.package} in this catkin workspace or on ROS_PACKAGE_PATH")
-        elif err.env:
-            self.note("launch-env", "info", f"{what}: {err.reason}", scope, line,
-                      f"export {err.env} (or pass the arg on the command line)")
-        else:
-            self.note("launch-arg", "warning", f"{what}: {err.reason}", scope, line,
-                      "pass the arg (name:=value) or give it a default")
+    FIXES = ROS1_FIXES
 
 
 def parse_launch_xml(path: Path, what: str = "launch file"):
@@ -174,17 +157,17 @@ def read_param(read: LaunchRead, el, scope: Scope) -> None:
     try:
         full = param_name(expand_or_keep(read.lookup, name, scope), scope.ns, scope.node)
     except ParamError as err:
-        read.note("launch-param", "warning", f"<param name=\"{name}\">: {err}", scope, el.sourceline,
+        read.note("launch-param", "warning", f"<param name=\"{name}\">: {err}", scope.path, el.sourceline,
                   "put it inside the <node> it is for, or drop the ~")
         return
     read.params[full] = expand_lenient(read.lookup, raw, scope)[0]
     if el.get("command") is not None:   # roslaunch runs it; a robot description's xacro: our robot stands in
         if "xacro" not in el.get("command") and "robot_description" not in full:
-            read.note("launch-param", "info", f"param {full} comes from a command, which is not run here", scope,
+            read.note("launch-param", "info", f"param {full} comes from a command, which is not run here", scope.path,
                       el.sourceline, "give the value itself (value=, textfile= or a <rosparam>)")
         return
     if el.get("binfile") is not None:
-        read.note("launch-param", "info", f"param {full} is a binfile, which is not loaded here", scope,
+        read.note("launch-param", "info", f"param {full} is a binfile, which is not loaded here", scope.path,
                   el.sourceline, None)
         return
     if el.get("textfile") is not None:
@@ -197,10 +180,10 @@ def read_param(read: LaunchRead, el, scope: Scope) -> None:
     try:
         value = typed_value(expand(read.lookup, el.get("value"), scope, find=True), el.get("type"))
     except Unresolved as err:
-        read.unresolved(err, f"param {full}", scope, el.sourceline)
+        read.unresolved(err, f"param {full}", scope.path, el.sourceline)
         return
     except ParamError as err:
-        read.note("launch-param", "error", f"param {full}: {err}", scope, el.sourceline,
+        read.note("launch-param", "error", f"param {full}: {err}", scope.path, el.sourceline,
                   "fix the value or its type= (roslaunch stops on it)")
         return
     _store(read, full, value, scope, el.sourceline)
@@ -217,7 +200,7 @@ def read_rosparam(read: LaunchRead, el, scope: Scope) -> None:
         param = el.get("param")
         full = param_name(expand_or_keep(read.lookup, param, scope), ns, None) if param else None
     except ParamError as err:
-        read.note("launch-param", "warning", f"<rosparam>: {err}", scope, el.sourceline,
+        read.note("launch-param", "warning", f"<rosparam>: {err}", scope.path, el.sourceline,
                   "put it inside the <node> it is for, or drop the ~")
         return
     if command != "load":
@@ -232,12 +215,12 @@ def read_rosparam(read: LaunchRead, el, scope: Scope) -> None:
         try:
             text = expand(read.lookup, text, scope, find=True)
         except Unresolved as err:
-            read.unresolved(err, "<rosparam subst_value>", scope, el.sourceline)
+            read.unresolved(err, "<rosparam subst_value>", scope.path, el.sourceline)
             return
     try:
         pairs = rosparam_sets(load_yaml(text), ns, full)
     except ParamError as err:
-        read.note("launch-param", "error", f"<rosparam>: {err}", scope, el.sourceline,
+        read.note("launch-param", "error", f"<rosparam>: {err}", scope.path, el.sourceline,
                   "fix the YAML (roslaunch stops on it)")
         return
     for name, value in pairs:
@@ -247,7 +230,7 @@ def read_rosparam(read: LaunchRead, el, scope: Scope) -> None:
 def _store(read: LaunchRead, name: str, value, scope: Scope, line: int | None) -> None:
     why = storable(value)
     if why is not None:
-        read.note("launch-param", "warning", f"param {name} is not set: {why}", scope, line,
+        read.note("launch-param", "warning", f"param {name} is not set: {why}", scope.path, line,
                   "give it a value the parameter server can hold")
         return
     set_value(read.info.params, name, value)
@@ -260,7 +243,7 @@ def _file_text(read: LaunchRead, raw: str, what: str, scope: Scope, line: int | 
     try:
         path = Path(expand(read.lookup, raw, scope, find=True))
     except Unresolved as err:
-        read.unresolved(err, what, scope, line)
+        read.unresolved(err, what, scope.path, line)
         return None
     try:
         return read_text_capped(path, what="parameter file")
@@ -268,7 +251,7 @@ def _file_text(read: LaunchRead, raw: str, what: str, scope: Scope, line: int | 
         reason = err.strerror or str(err)
     except UnicodeDecodeError:
         reason = "not UTF-8 text"
-    read.note("launch-param", "warning", f"{what} {path}: {reason}", scope, line, "fix the path")
+    read.note("launch-param", "warning", f"{what} {path}: {reason}", scope.path, line, "fix the path")
     return None
 
 
@@ -276,7 +259,7 @@ def read_remap(read: LaunchRead, el, scope: Scope) -> None:
     """``<remap from to>``: for the nodes declared after it in this scope (a node's own: for that node)."""
     source, target = el.get("from"), el.get("to")
     if not source or not target:
-        read.note("launch-remap", "warning", "<remap> needs both from= and to=", scope, el.sourceline,
+        read.note("launch-remap", "warning", "<remap> needs both from= and to=", scope.path, el.sourceline,
                   'write <remap from="scan" to="/base_scan"/>')
         return
     scope.remaps = scope.remaps + ((expand_or_keep(read.lookup, source, scope),
@@ -308,10 +291,10 @@ def read_include(read: LaunchRead, el, scope: Scope) -> None:
     try:
         target = Path(expand(read.lookup, raw, scope, find=True))
     except Unresolved as err:
-        read.unresolved(err, f"<include file=\"{raw}\"> not followed", scope, el.sourceline)
+        read.unresolved(err, f"<include file=\"{raw}\"> not followed", scope.path, el.sourceline)
         return
     if not target.is_file():
-        read.note("launch-include", "warning", f"included file {target} does not exist", scope,
+        read.note("launch-include", "warning", f"included file {target} does not exist", scope.path,
                   el.sourceline, "fix the path of the <include>")
         return
     read.info.includes.append(target)
@@ -321,7 +304,7 @@ def read_include(read: LaunchRead, el, scope: Scope) -> None:
 def read_world_name(read: LaunchRead, value: ArgValue, line: int | None, scope: Scope) -> None:
     """The ``world_name`` passed to gazebo_ros: the world's reference, package and (when absolute) path."""
     if isinstance(value, Unresolved):
-        read.unresolved(value, "world_name", scope, line)
+        read.unresolved(value, "world_name", scope.path, line)
         return
     read.info.world_ref = value
     found = re.match(r"\s*\$\(find\s+([^)\s]+)\)", value)
@@ -329,11 +312,11 @@ def read_world_name(read: LaunchRead, value: ArgValue, line: int | None, scope: 
     try:
         resolved = expand(read.lookup, value, scope, find=True).strip()
     except Unresolved as err:
-        read.unresolved(err, f"world_name {value}", scope, line)
+        read.unresolved(err, f"world_name {value}", scope.path, line)
         return
     if not os.path.isabs(resolved):
         read.note("launch-world", "info", f"world_name {resolved!r} is found through Gazebo's resource path",
-                  scope, line, "give the world as $(find PKG)/worlds/NAME.world to check it")
+                  scope.path, line, "give the world as $(find PKG)/worlds/NAME.world to check it")
         return
     read.info.world_path = Path(resolved)
 
@@ -352,7 +335,7 @@ def read_node(read: LaunchRead, el, scope: Scope) -> None:
     required, respawn = _flag(read, el, "required", scope), _flag(read, el, "respawn", scope)
     if required and respawn:
         read.note("launch-node", "error", f"node {join_ns(ns, name)} is both required and respawn (roslaunch "
-                  "refuses the file)", scope, el.sourceline, "keep one of required=\"true\" and respawn=\"true\"")
+                  "refuses the file)", scope.path, el.sourceline, "keep one of required=\"true\" and respawn=\"true\"")
     node = NodeRef(pkg, node_type, name, ns, None if errors else args, el.sourceline, own.remaps, own.env,
                    required, respawn)
     read.info.nodes.append(node)
@@ -372,7 +355,7 @@ def read_spawn(read: LaunchRead, node: NodeRef, args: str, errors: List[Unresolv
         words = shlex.split(args)
     except ValueError:   # an unclosed quote: roslaunch's own split would stop there; the words as spaces give them
         read.note("launch-spawn", "warning", f"spawn_model {node.full_name}: its args have an unclosed quote",
-                  scope, line, "close the quote in args=\"…\"")
+                  scope.path, line, "close the quote in args=\"…\"")
         words = args.split()
     pose: Optional[List[float]] = [0.0, 0.0, 0.0, 0.0]
     model_name = param = None
@@ -381,13 +364,13 @@ def read_spawn(read: LaunchRead, node: NodeRef, args: str, errors: List[Unresolv
         if word in GAZEBO_FLAGS:
             marker = re.search(r"\0(\d+)\0", following or "")
             if marker:
-                read.unresolved(errors[int(marker.group(1))], f"spawn_model {node.full_name} {word}", scope, line)
+                read.unresolved(errors[int(marker.group(1))], f"spawn_model {node.full_name} {word}", scope.path, line)
                 pose = None
                 continue
             try:
                 value = float(following)
             except (TypeError, ValueError):
-                read.note("launch-spawn", "error", f"spawn_model {word} {following!r} is not a number", scope,
+                read.note("launch-spawn", "error", f"spawn_model {word} {following!r} is not a number", scope.path,
                           line, "give the pose as numbers (or $(arg NAME) with a numeric default)")
                 pose = None
                 continue
@@ -401,7 +384,7 @@ def read_spawn(read: LaunchRead, node: NodeRef, args: str, errors: List[Unresolv
         marker = re.search(r"\0(\d+)\0", word)
         if marker and not (i > 0 and words[i - 1].startswith("-")):
             read.unresolved(errors[int(marker.group(1))], f"spawn_model {node.full_name}: pose unknown",
-                            scope, line)
+                            scope.path, line)
             pose = None
     robot = robot_of(read, param, node.ns)
     namespace = next((words[i + 1] for i, w in enumerate(words[:-1]) if w == "-robot_namespace"), None)
