@@ -4,14 +4,16 @@ of it (:class:`Outcome`), and the findings about the nodes that every transport 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+import time
 from pathlib import Path
+from typing import Sequence
 
 from ..core.errors import InputError
 from ..core.findings import Finding
 from ..core.fsio import check_free
 from .metrics import compute
 from .rubrics import DEFAULT_DURATION, person_loop
-from .supervise import Child
+from .supervise import Child, Supervisor
 
 
 @dataclass
@@ -35,6 +37,38 @@ class NodeSpec:
     @property
     def argv(self) -> list[str]:
         return self.command + self.args
+
+
+def group_args(items: Sequence[str]) -> list[tuple[str, list[str]]]:
+    """NODE arguments each with the ``name:=value`` items after it; InputError when one comes first."""
+    grouped: list[tuple[str, list[str]]] = []
+    for item in items:
+        if ":=" in item and grouped:
+            grouped[-1][1].append(item)
+        elif ":=" in item:
+            raise InputError(f"{item!r} comes before any node", hint="write NODE first, then its name:=value arguments")
+        else:
+            grouped.append((item, []))
+    return grouped
+
+
+def check_python_file(path: Path) -> None:
+    """InputError unless ``path`` is a readable Python node file (UTF-8 text, ``.py`` or a ``#!`` script)."""
+    if not path.exists():
+        raise InputError("no such node file", path=path, hint="give the path of the node's .py file")
+    if path.is_dir():
+        raise InputError("is a folder, not a node", path=path, hint="give the node's .py file")
+    try:
+        data = path.read_bytes()
+    except OSError as err:
+        raise InputError(f"cannot read the node: {err.strerror}", path=path) from None
+    if path.suffix != ".py" and not data.startswith(b"#!") or b"\0" in data:
+        raise InputError("is not a Python node", path=path, hint="give a rospy node's .py file, PKG/TYPE or a .launch file")
+    try:
+        data.decode("utf-8")
+    except UnicodeDecodeError:
+        raise InputError("is not a Python node (not UTF-8 text)", path=path,
+                         hint="give a rospy node's .py file") from None
 
 
 @dataclass
@@ -185,3 +219,17 @@ class Outputs:
     html: Path | None = None
     html_page: object = None          # html_page(result, world, trace) -> bytes: the replay page's maker
     force: bool = False
+
+
+def wait_for_end(simulator: Child, options: RunOptions, required: list[Child], supervisor: Supervisor
+                 ) -> Child | None:
+    """Until the simulator has run its duration (or a time limit); a required node that exits first stops the
+    simulator (which then writes its trace) and is returned."""
+    deadline = time.monotonic() + end_limit(options)
+    while simulator.running and time.monotonic() < deadline:
+        ended = next((c for c in required if not c.running), None)
+        if ended is not None:
+            supervisor.stop(simulator)
+            return ended
+        time.sleep(0.05)
+    return None

@@ -62,6 +62,10 @@ class Child:
         except OSError:
             return ""
 
+    def says(self, text: str) -> bool:
+        """Whether its output so far holds ``text``."""
+        return text in self.output()
+
     def last_error_line(self) -> str:
         """The last non-empty line of its output (a traceback's last line says what went wrong)."""
         lines = [ln.strip() for ln in self.output().splitlines() if ln.strip()]

@@ -1,8 +1,9 @@
 """The simulator's step loop, the same for every transport: step the physics and say what is due when.
 
-``/clock`` and the IMU go out every other 1/240 s step, 120 Hz of simulated time: Gazebo's gazebo_ros publishes the
-clock at 100 Hz, ``rospy.Rate`` and rclpy timer loops up to 30 Hz wake within 8 ms of when they should, and
-publishing every step would double the clock traffic every node receives for nothing. The drive plugins' messages
+The IMU goes out every other 1/240 s step (120 Hz of simulated time), and so does ``/clock`` on ROS 1 and Jazzy:
+Gazebo's gazebo_ros publishes it at 100 Hz, ``rospy.Rate`` and rclpy timer loops up to 30 Hz wake within 8 ms of
+when they should, and publishing every step would double the clock traffic every node receives for nothing.
+Humble's gazebo_ros publishes it at 10 Hz, and so does the simulator there (the wire's ``clock_every``). The drive plugins' messages
 go out at their update rate (30 Hz), the scans at the LiDAR's (5 Hz), the pictures at the camera's (30 Hz).
 
 ``rate`` paces simulated time at that many times real time (:mod:`.pacing`); 0 runs as fast as it goes, and then,
@@ -29,6 +30,7 @@ class Wire:
     ``graded`` (the :class:`~.robot.RobotIO` whose answers are waited for), and the methods below."""
 
     session = None
+    clock_every = CLOCK_EVERY   # physics steps between two /clock messages
     paused = False
     person = None
     graded = None
@@ -43,7 +45,7 @@ class Wire:
         raise NotImplementedError
 
     def publish_fast(self, dt: float) -> None:
-        """/clock, each robot's IMU (``dt`` apart), and any per-step state topics."""
+        """Each robot's IMU (``dt`` apart), and any per-step state topics."""
         raise NotImplementedError
 
     def publish_drive(self) -> None:
@@ -105,6 +107,8 @@ def _step_loop(wire: Wire, rate: float, end_step: int | None, backlog: Backlog |
             s.move_body(person[0], *wire.person_xy(s.t + dt))
         s.run(dt)
         step += 1
+        if step % wire.clock_every == 0:
+            wire.publish_clock()
         if step % CLOCK_EVERY == 0:
             wire.publish_fast(dt * CLOCK_EVERY)
             governor.pace(s.t)

@@ -13,6 +13,7 @@ from __future__ import annotations
 import math
 import threading
 import xml.etree.ElementTree as ET
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -22,6 +23,34 @@ from .topics import frame
 GRAVITY = 9.8
 ODOM_COV = [1e-5, 0, 0, 0, 0, 0, 0, 1e-5, 0, 0, 0, 0, 0, 0, 1e12, 0, 0, 0, 0, 0, 0, 1e12, 0, 0,
             0, 0, 0, 0, 1e12, 0, 0, 0, 0, 0, 0, 1e-3]   # what gazebo_ros_diff_drive puts in both covariances
+
+
+@dataclass(frozen=True)
+class Plugins:
+    """How a stack's Gazebo plugins fill the robot's messages where the stacks differ (docs/ros2_stacks.md):
+    ``wheel_odometry``: odometry counted from the spawn pose, z 0 and yaw only (Gazebo Sim's DiffDrive), else the
+    true pose in the world (gazebo_ros_diff_drive's odometrySource world); ``odom_covariance`` (None: zeros);
+    ``imu_frame``: the IMU's frame id, ``{model}`` standing for the robot model (None: its link);
+    ``imu_covariance``: the diagonal of the angular velocity and linear acceleration covariances; ``effort``:
+    joint_states carries efforts (zeros) as Gazebo Sim's JointStatePublisher does."""
+
+    wheel_odometry: bool = False
+    odom_covariance: tuple | None = tuple(ODOM_COV)
+    imu_frame: str | None = None
+    imu_covariance: tuple = (0.0, 0.0)
+    effort: bool = False
+
+
+PLUGINS = {
+    "noetic": Plugins(),
+    "humble": Plugins(imu_covariance=(4e-8, 2.89e-4)),
+    "jazzy": Plugins(wheel_odometry=True, odom_covariance=None, imu_frame="{model}/imu_link/tb3_imu",
+                     imu_covariance=(4e-8, 2.89e-4), effort=True),
+}
+
+
+def diagonal(value: float) -> list[float]:
+    return [value, 0.0, 0.0, 0.0, value, 0.0, 0.0, 0.0, value]
 
 
 def quat_rpy(roll: float, pitch: float, yaw: float):
@@ -71,8 +100,9 @@ class RobotIO:
     """One robot's messages, commands and trace (see the module docstring). A transport calls :meth:`command`
     from its own threads; everything else runs in the step loop."""
 
-    def __init__(self, robot, ns: str = "/", tf_prefix: str = "", *, record_scans: bool = False, lock=None):
-        self.robot, self.ns, self.prefix = robot, ns, tf_prefix
+    def __init__(self, robot, ns: str = "/", tf_prefix: str = "", *, record_scans: bool = False, lock=None,
+                 plugins: Plugins = PLUGINS["noetic"], model: str = "burger"):
+        self.robot, self.ns, self.prefix, self.plugins = robot, ns, tf_prefix, plugins
         self.lock = lock or threading.Lock()
         profile = robot.profile
         self.base = profile.base_frame
@@ -80,6 +110,8 @@ class RobotIO:
         self.wheel_joints = {j.name: j for j in profile.joints
                              if j.name in (profile.drive.left_joint, profile.drive.right_joint)}
         self.imu_link = "imu_link" if "imu_link" in robot.link_index else self.base
+        self.imu_frame = plugins.imu_frame.format(model=model) if plugins.imu_frame else \
+            frame(tf_prefix, self.imu_link)
         self.trace: dict = {"odom": [], "scans": [], "cmd": []}
         self.record_scans = record_scans and robot.lidar is not None
         if self.record_scans:   # every published scan, for a replay (see scan)
@@ -131,17 +163,19 @@ class RobotIO:
         vy = math.cos(yaw) * lin[1] - math.sin(yaw) * lin[0]
         self.trace["odom"].append([t, x, y, yaw, vx, ang[2], *r.drive.command])
         out: dict = {}
+        position, orientation = self.odom_pose((x, y, z), quat, yaw)
         if odom:
             twist = {"linear": vector((vx, vy, 0.0)), "angular": vector((0.0, 0.0, ang[2]))}
+            cov = list(self.plugins.odom_covariance or [0.0] * 36)
             out["odom"] = {"header": header(t, frame(self.prefix, "odom")),
                            "child_frame_id": frame(self.prefix, self.base),
-                           "pose": {"pose": {"position": vector((x, y, z)), "orientation": quaternion(quat)},
-                                    "covariance": ODOM_COV},
-                           "twist": {"twist": twist, "covariance": ODOM_COV}}
+                           "pose": {"pose": {"position": vector(position), "orientation": quaternion(orientation)},
+                                    "covariance": cov},
+                           "twist": {"twist": twist, "covariance": cov}}
         if tf or joint_states:
             (pl, pr), (wl, wr) = r.wheel_states()
         if tf:
-            transforms = [self.transform("odom", self.base, (x, y, z), quat, t)]
+            transforms = [self.transform("odom", self.base, position, orientation, t)]
             for joint, angle in zip((r.profile.drive.left_joint, r.profile.drive.right_joint), (pl, pr)):
                 j = self.wheel_joints.get(joint)
                 if j is not None:
@@ -151,8 +185,19 @@ class RobotIO:
         if joint_states:
             out["joint_states"] = {"header": header(t, ""),
                                    "name": [r.profile.drive.left_joint, r.profile.drive.right_joint],
-                                   "position": [pl, pr], "velocity": [wl, wr], "effort": []}
+                                   "position": [pl, pr], "velocity": [wl, wr],
+                                   "effort": [0.0, 0.0] if self.plugins.effort else []}
         return out
+
+    def odom_pose(self, xyz, quat, yaw: float):
+        """The pose odometry reports: the true one, or (wheel odometry) the one counted from the spawn pose."""
+        if not self.plugins.wheel_odometry:
+            return xyz, quat
+        x0, y0, yaw0 = self.robot.spawn
+        c, s = math.cos(yaw0), math.sin(yaw0)
+        dx, dy = xyz[0] - x0, xyz[1] - y0
+        heading = math.atan2(math.sin(yaw - yaw0), math.cos(yaw - yaw0))
+        return (c * dx + s * dy, -s * dx + c * dy, 0.0), (0.0, 0.0, math.sin(heading / 2), math.cos(heading / 2))
 
     def imu(self, dt: float, t: float) -> dict:
         """The IMU at ``t``: true orientation, body rates, and the acceleration (differenced over ``dt``) with
@@ -169,8 +214,10 @@ class RobotIO:
         rot = np.array(pb.getMatrixFromQuaternion(quat)).reshape(3, 3)
         body_w = rot.T @ np.asarray(ang)
         body_a = rot.T @ (np.asarray(accel) + np.array([0.0, 0.0, GRAVITY]))
-        return {"header": header(t, frame(self.prefix, self.imu_link)), "orientation": quaternion(quat),
-                "angular_velocity": vector(body_w.tolist()), "linear_acceleration": vector(body_a.tolist())}
+        gyro, accel_cov = self.plugins.imu_covariance
+        return {"header": header(t, self.imu_frame), "orientation": quaternion(quat),
+                "angular_velocity": vector(body_w.tolist()), "linear_acceleration": vector(body_a.tolist()),
+                "angular_velocity_covariance": diagonal(gyro), "linear_acceleration_covariance": diagonal(accel_cov)}
 
     def imu_unheard(self) -> None:
         """No one listens to the IMU: the next acceleration starts afresh."""

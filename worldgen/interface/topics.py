@@ -81,23 +81,22 @@ _NOETIC = (
 )
 
 # ROS 2 Humble + Gazebo Classic 11: gazebo_ros_pkgs' ros2 plugins in turtlebot3_simulations' humble models. Each
-# plugin is a node of its own, named by the plugin's name in the model (docs/ros2_stacks.md).
+# plugin is a node of its own, named by the plugin's name in the model; QoS and rates as docs/ros2_stacks.md cites.
 _HUMBLE = (
-    Topic("clock", "/clock", "rosgraph_msgs/msg/Clock", "out", CLOCK_HZ, "/gazebo", DEFAULT, False),
-    Topic("tf", "/tf", "tf2_msgs/msg/TFMessage", "out", DRIVE_HZ, "/turtlebot3_diff_drive", DEFAULT, False),
+    Topic("clock", "/clock", "rosgraph_msgs/msg/Clock", "out", 10.0, "/gazebo", Qos(reliable=False, depth=1), False),
+    Topic("tf", "/tf", "tf2_msgs/msg/TFMessage", "out", DRIVE_HZ, "/turtlebot3_diff_drive", Qos(depth=100), False),
     Topic("tf_static", "/tf_static", "tf2_msgs/msg/TFMessage", "out", None, "/robot_state_publisher", LATCHED,
           False),
-    Topic("scan", "scan", "sensor_msgs/msg/LaserScan", "out", SCAN_HZ, "/turtlebot3_laserscan",
-          Qos(reliable=True, depth=5)),    # gazebo_ros_ray_sensor: SensorDataQoS().reliable()
-    Topic("odom", "odom", "nav_msgs/msg/Odometry", "out", DRIVE_HZ, "/turtlebot3_diff_drive", DEFAULT),
+    Topic("scan", "scan", "sensor_msgs/msg/LaserScan", "out", SCAN_HZ, "/turtlebot3_laserscan", Qos(depth=5)),
+    Topic("odom", "odom", "nav_msgs/msg/Odometry", "out", DRIVE_HZ, "/turtlebot3_diff_drive", Qos(depth=1)),
     Topic("joint_states", "joint_states", "sensor_msgs/msg/JointState", "out", DRIVE_HZ,
-          "/turtlebot3_joint_state", DEFAULT),
-    Topic("imu", "imu", "sensor_msgs/msg/Imu", "out", IMU_HZ, "/turtlebot3_imu", SENSOR_DATA),
-    Topic("cmd_vel", "cmd_vel", "geometry_msgs/msg/Twist", "in", None, "/turtlebot3_diff_drive", DEFAULT),
+          "/turtlebot3_joint_state", Qos(depth=1000)),
+    Topic("imu", "imu", "sensor_msgs/msg/Imu", "out", IMU_HZ, "/turtlebot3_imu", Qos(depth=5)),
+    Topic("cmd_vel", "cmd_vel", "geometry_msgs/msg/Twist", "in", None, "/turtlebot3_diff_drive", Qos(depth=1)),
 )
 
 # ROS 2 Jazzy + Gazebo Sim 8: everything crosses ros_gz_bridge (turtlebot3_gazebo's params/*_bridge.yaml), whose
-# publishers and subscribers use the default QoS; cmd_vel is TwistStamped.
+# publishers and subscribers all use reliable, volatile, keep last 10; cmd_vel is TwistStamped.
 _JAZZY = (
     Topic("clock", "/clock", "rosgraph_msgs/msg/Clock", "out", CLOCK_HZ, "/ros_gz_bridge", DEFAULT, False),
     Topic("tf", "/tf", "tf2_msgs/msg/TFMessage", "out", DRIVE_HZ, "/ros_gz_bridge", DEFAULT, False),
@@ -120,13 +119,20 @@ def topics(stack: str) -> dict[str, Topic]:
 
 
 def camera_topics(stack: str, image: str, info: str) -> dict[str, Topic]:
-    """A camera's three topics (``image`` and ``info`` relative to the robot's namespace, as the camera plugin
-    names them): the picture, its camera_info and image_transport's JPEG, at 30 Hz of simulated time."""
-    node = {"noetic": "/gazebo", "humble": "/camera_driver", "jazzy": "/ros_gz_image"}[stack]
-    qos = SENSOR_DATA if stack == "humble" else DEFAULT
-    return {"image": Topic("image", image, "sensor_msgs/msg/Image", "out", 30.0, node, Qos(qos.reliable, 2)
-                           if stack == "noetic" else qos),
-            "info": Topic("info", info, "sensor_msgs/msg/CameraInfo", "out", 30.0, node,
-                          Qos(depth=2) if stack == "noetic" else qos),
-            "compressed": Topic("compressed", image + "/compressed", "sensor_msgs/msg/CompressedImage", "out", 30.0,
-                                node, Qos(depth=2) if stack == "noetic" else qos)}
+    """A camera's topics (``image`` and ``info`` as the stack names them, relative to the robot's namespace): the
+    picture, its camera_info and (ROS 1: image_transport's) JPEG, at 30 Hz of simulated time."""
+    if stack == "noetic":
+        return {"image": Topic("image", image, "sensor_msgs/msg/Image", "out", 30.0, "/gazebo", Qos(depth=2)),
+                "info": Topic("info", info, "sensor_msgs/msg/CameraInfo", "out", 30.0, "/gazebo", Qos(depth=2)),
+                "compressed": Topic("compressed", image + "/compressed", "sensor_msgs/msg/CompressedImage", "out",
+                                    30.0, "/gazebo", Qos(depth=2))}
+    image_node, info_node = ("/camera_driver", "/camera_driver") if stack == "humble" else \
+        ("/ros_gz_image", "/ros_gz_bridge")
+    qos = Qos(depth=5) if stack == "humble" else DEFAULT
+    return {"image": Topic("image", image, "sensor_msgs/msg/Image", "out", 30.0, image_node, qos),
+            "info": Topic("info", info, "sensor_msgs/msg/CameraInfo", "out", 30.0, info_node, qos)}
+
+
+def clock_every(stack: str, time_step: float) -> int:
+    """Physics steps between two ``/clock`` messages on ``stack``."""
+    return max(1, round(1.0 / (topics(stack)["clock"].rate * time_step)))

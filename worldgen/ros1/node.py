@@ -48,6 +48,7 @@ from ..core.errors import WorldgenError
 from ..core.scene import Scene
 from ..interface.camera import CameraIO
 from ..interface.loop import Wire, run_loop
+from ..interface.signals import deliver_interrupts, ignore_interrupts, run_main
 from ..interface.robot import RobotIO
 from ..interface.topics import topics as stack_topics
 from ..robots import robot_urdf
@@ -199,8 +200,7 @@ class Bridge(Wire):
             self.trace["person"].append([t, *self.person_xy(t)])
 
     def publish_fast(self, dt: float) -> None:
-        """What goes out every other step: /clock, each robot's /imu, Gazebo's model and link states."""
-        self.publish_clock()
+        """What goes out every other step: each robot's /imu, Gazebo's model and link states."""
         for topics in self.robots:
             topics.publish_imu(dt, self.session.t)
         self.api.publish_states()
@@ -289,7 +289,7 @@ def main(argv: list[str]) -> int:
         bridge.publish_static()
         timing = {"sim_time_s": 0.0, "wall_time_s": 0.0, "real_time_factor": None, "interrupted": True}
         try:
-            _deliver_interrupts()   # one that came while starting is raised here, where it is handled
+            deliver_interrupts()   # one that came while starting is raised here, where it is handled
             if config.get("start_param"):
                 wait_for_start(rospy, bridge, config["start_param"])
             print("worldgen-sim: running", file=sys.stderr, flush=True)
@@ -298,7 +298,7 @@ def main(argv: list[str]) -> int:
         except KeyboardInterrupt:
             pass
         finally:
-            _ignore_interrupts()   # a second signal must not cut the trace short
+            ignore_interrupts()   # a second signal must not cut the trace short
             finish(rospy, bridge, config, timing)
     return 0
 
@@ -342,44 +342,5 @@ def finish(rospy, bridge: Bridge, config: dict, timing: dict) -> None:
     rospy.signal_shutdown("worldgen sim done")
 
 
-def _interrupt(signum, frame):
-    raise KeyboardInterrupt(f"signal {signum}")
-
-
-STOP_SIGNALS = ("SIGINT", "SIGTERM", "SIGHUP")
-
-
-def _hold_interrupts() -> None:
-    """Hold the stop signals until :func:`_deliver_interrupts`: while the node starts, a KeyboardInterrupt could be
-    raised inside an import's clean-up callback, where Python prints it as "Exception ignored" and carries on."""
-    import signal
-
-    signal.pthread_sigmask(signal.SIG_BLOCK, {getattr(signal, s) for s in STOP_SIGNALS})
-
-
-def _deliver_interrupts() -> None:
-    import signal
-
-    signal.pthread_sigmask(signal.SIG_UNBLOCK, {getattr(signal, s) for s in STOP_SIGNALS})
-
-
-def _ignore_interrupts() -> None:
-    import signal
-
-    for sig in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
-        try:
-            signal.signal(sig, signal.SIG_IGN)
-        except ValueError:
-            pass
-
-
 if __name__ == "__main__":
-    import signal
-
-    signal.signal(signal.SIGTERM, _interrupt)
-    signal.signal(signal.SIGHUP, _interrupt)
-    _hold_interrupts()
-    try:
-        sys.exit(main(sys.argv[1:]))
-    except KeyboardInterrupt:   # interrupted before the loop started: nothing to write
-        sys.exit(0)
+    run_main(main)

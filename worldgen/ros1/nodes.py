@@ -15,25 +15,13 @@ import shlex
 from pathlib import Path
 from typing import Sequence
 
-from ..bridge.outcome import NodeSpec
+from ..bridge.outcome import NodeSpec, check_python_file, group_args
 from ..core.errors import InputError
 
 # Packages whose nodes worldgen itself stands in for when a launch file starts them.
 STAND_INS = frozenset({"gazebo_ros", "robot_state_publisher", "joint_state_publisher", "xacro", "rviz",
                        "turtlebot3_gazebo", "turtlebot3_description", "turtlebot3_bringup", "tf", "tf2_ros"})
 _PKG_TYPE = re.compile(r"^[A-Za-z][A-Za-z0-9_]*/[^/\s]+$")
-
-
-def _group(items: Sequence[str]) -> list[tuple[str, list[str]]]:
-    grouped: list[tuple[str, list[str]]] = []
-    for item in items:
-        if ":=" in item and grouped:
-            grouped[-1][1].append(item)
-        elif ":=" in item:
-            raise InputError(f"{item!r} comes before any node", hint="write NODE first, then its name:=value arguments")
-        else:
-            grouped.append((item, []))
-    return grouped
 
 
 def resolve_nodes(items: Sequence[str], python: str, search: Sequence[str | Path] = ()) -> list[NodeSpec]:
@@ -43,7 +31,7 @@ def resolve_nodes(items: Sequence[str], python: str, search: Sequence[str | Path
     if not items:
         raise InputError("no node given", hint="give the node to run: a .py file, PKG/TYPE or a .launch file")
     specs: list[NodeSpec] = []
-    for item, args in _group(items):
+    for item, args in group_args(items):
         path = Path(item)
         if item.endswith((".launch.py", "_launch.py")):
             raise InputError("is a ROS 2 launch file: worldgen run starts ROS 1 (rospy) nodes", path=path,
@@ -59,24 +47,6 @@ def resolve_nodes(items: Sequence[str], python: str, search: Sequence[str | Path
         if names.count(spec.name) > 1:
             spec.name = f"{spec.name}_{i + 1}"
     return specs
-
-
-def check_python_file(path: Path) -> None:
-    if not path.exists():
-        raise InputError("no such node file", path=path, hint="give the path of the node's .py file")
-    if path.is_dir():
-        raise InputError("is a folder, not a node", path=path, hint="give the node's .py file")
-    try:
-        data = path.read_bytes()
-    except OSError as err:
-        raise InputError(f"cannot read the node: {err.strerror}", path=path) from None
-    if path.suffix != ".py" and not data.startswith(b"#!") or b"\0" in data:
-        raise InputError("is not a Python node", path=path, hint="give a rospy node's .py file, PKG/TYPE or a .launch file")
-    try:
-        data.decode("utf-8")
-    except UnicodeDecodeError:
-        raise InputError("is not a Python node (not UTF-8 text)", path=path,
-                         hint="give a rospy node's .py file") from None
 
 
 def _python_file(path: Path, python: str, args: list[str], name: str | None = None) -> NodeSpec:

@@ -20,7 +20,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from ..bridge.outcome import NodeSpec, Outcome, RunOptions, end_limit, launch_params, outcome_of
+from ..bridge.outcome import NodeSpec, Outcome, RunOptions, launch_params, outcome_of, wait_for_end
 from ..bridge.supervise import Child, Supervisor
 from ..bridge.world import World, write_config
 from ..core.errors import WorldgenError
@@ -76,7 +76,7 @@ def run_nodes(world: World, nodes: list[NodeSpec], options: RunOptions, base_env
         _wait_for_nodes(children, uri)
         set_param(uri, "/worldgen/pids", [c.proc.pid for c in children])
         set_param(uri, START_PARAM, True)
-        ended_by = _wait_for_end(simulator, options, [c for c, n in zip(children, nodes) if n.required],
+        ended_by = wait_for_end(simulator, options, [c for c, n in zip(children, nodes) if n.required],
                                  supervisor)
         alive = {c.name: c.running for c in children}
         supervisor.stop_all()
@@ -112,18 +112,5 @@ def _wait_for_nodes(children: list[Child], uri: str) -> None:
         time.sleep(0.05)
     time.sleep(SETTLE)
 
-
-def _wait_for_end(simulator: Child, options: RunOptions, required: list[Child], supervisor: Supervisor
-                  ) -> Child | None:
-    """Until the simulator has run its duration (or a time limit); a required node that exits first stops the
-    simulator (which then writes its trace) and is returned."""
-    deadline = time.monotonic() + end_limit(options)
-    while simulator.running and time.monotonic() < deadline:
-        ended = next((c for c in required if not c.running), None)
-        if ended is not None:
-            supervisor.stop(simulator)
-            return ended
-        time.sleep(0.05)
-    return None
 
 

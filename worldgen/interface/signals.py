@@ -1,0 +1,43 @@
+"""The stop signals of a simulator process (ROS 1's or ROS 2's), which runs as a child of ``worldgen run`` or
+``worldgen sim``: SIGTERM and SIGHUP become KeyboardInterrupt like Ctrl-C; they are held while the simulator starts
+(a KeyboardInterrupt raised inside an import's clean-up callback is printed as "Exception ignored" and lost) and
+delivered once its loop can handle them; and once it is writing its trace, a second signal must not cut that short.
+Only a simulator process's own ``__main__`` calls :func:`run_main`, so no other process's handlers change."""
+
+from __future__ import annotations
+
+import signal
+import sys
+from typing import Callable
+
+STOP_SIGNALS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
+
+
+def _interrupt(signum, frame):
+    raise KeyboardInterrupt(f"signal {signum}")
+
+
+def deliver_interrupts() -> None:
+    """Let the held stop signals in (raised as KeyboardInterrupt where the loop handles it)."""
+    signal.pthread_sigmask(signal.SIG_UNBLOCK, set(STOP_SIGNALS))
+
+
+def ignore_interrupts() -> None:
+    """From now on the stop signals do nothing (the trace is being written)."""
+    for sig in STOP_SIGNALS:
+        try:
+            signal.signal(sig, signal.SIG_IGN)
+        except ValueError:   # not the main thread
+            pass
+
+
+def run_main(main: Callable[[list], int]) -> None:
+    """Run a simulator's ``main(argv)`` as the process's whole life (see the module docstring) and exit with its
+    code; interrupted before its loop started, it exits 0 with nothing to write."""
+    signal.signal(signal.SIGTERM, _interrupt)
+    signal.signal(signal.SIGHUP, _interrupt)
+    signal.pthread_sigmask(signal.SIG_BLOCK, set(STOP_SIGNALS))
+    try:
+        sys.exit(main(sys.argv[1:]))
+    except KeyboardInterrupt:
+        sys.exit(0)

@@ -1,0 +1,407 @@
+"""The simulator on ROS 2: a :class:`~worldgen.sim.session.Session` that looks, to any rclpy node, like a TurtleBot3
+in Gazebo on Humble (Gazebo Classic's gazebo_ros plugins) or Jazzy (Gazebo Sim through ros_gz_bridge), spoken over
+DDS with PyPI's cyclonedds (:mod:`.participant`, :mod:`.msgs`).
+
+Topics, types, rates, frames and QoS are the stack's rows of :mod:`worldgen.interface.topics`; message contents
+are :mod:`worldgen.interface.robot`'s; the step loop is :mod:`worldgen.interface.loop`'s. Each robot's topics are in
+its namespace, ``/clock``, ``/tf`` and ``/tf_static`` shared. A message is made only while some reader matches its
+writer (as rclcpp publishers with no subscription cost nothing). What a student's node would get nothing from in
+real Gazebo — a Twist publisher on Jazzy's TwistStamped ``cmd_vel``, a best-effort publisher on a reliable
+subscription — moves nothing here either, and the trace holds a finding that says why.
+
+Run as ``python -m worldgen.ros2.node CONFIG.json`` (see :func:`main`): the config of :func:`worldgen.bridge.world.
+write_config` plus ``stack``, ``domain``, ``discovery`` (localhost, subnet), ``start_file`` (hold simulated time at 0
+until it exists, or until ``expect`` other DDS participants have matched some topic of the robot's) and ``cmd_vel``
+(jazzy: ``twist`` when the bridge is configured for Twist).
+"""
+
+import json
+import math
+import os
+import sys
+import threading
+import time
+from pathlib import Path
+
+from ..bridge.world import model_name
+from ..core.errors import WorldgenError
+from ..core.scene import Scene
+from ..interface.camera import CameraIO
+from ..interface.loop import Wire, run_loop
+from ..interface.signals import deliver_interrupts, ignore_interrupts, run_main
+from ..interface.robot import PLUGINS, RobotIO
+from ..interface.topics import Qos, camera_topics, clock_every, join, topics
+from ..robots import robot_urdf
+from ..robots.profile import robot_profile
+from ..sim.session import Session
+from . import msgs
+from .encode import build, velocity
+from .participant import Discovery, Participant, endpoint_qos
+
+START_WAIT = 30.0        # s of real time to wait for the start
+SETTLE = 0.2             # s of real time after the nodes' endpoints first match, for the rest to match
+LOOK_EVERY = 0.25        # s of real time between looks at the others' endpoints
+
+
+class DdsRobot:
+    """One robot's writers and its ``cmd_vel`` reader (see the module docstring)."""
+
+    def __init__(self, wire: "DdsWire", io: RobotIO, stack: str, cmd_type: str):
+        self.wire, self.io, self.ns = wire, io, io.ns
+        table = topics(stack)
+        self.writers = {key: wire.writer(join(io.ns, t.name), t.type, t.qos)
+                        for key, t in table.items() if t.direction == "out" and t.per_robot}
+        cmd = table["cmd_vel"]
+        self.cmd_name, self.cmd_type = join(io.ns, cmd.name), cmd_type
+        self.cmd_reader = wire.reader(self.cmd_name, cmd_type, cmd.qos, self.on_cmd_vel)
+        self.cameras: list = []
+
+    @property
+    def robot(self):
+        return self.io.robot
+
+    def on_cmd_vel(self, reader) -> None:   # a cyclonedds thread
+        for sample in reader.take(N=64):
+            v, w = velocity(sample)
+            self.io.command(v, w)
+
+    def heard(self, key: str) -> bool:
+        return self.writers[key].get_publication_matched_status().current_count > 0
+
+    def publish_drive(self, t: float) -> None:
+        tf_writer = self.wire.writers["tf"]
+        out = self.io.drive(t, odom=self.heard("odom"),
+                            tf=tf_writer.get_publication_matched_status().current_count > 0,
+                            joint_states=self.heard("joint_states"))
+        if "odom" in out:
+            self.wire.send(self.writers["odom"], msgs.Odometry, out["odom"])
+        if "tf" in out:
+            self.wire.send(tf_writer, msgs.TFMessage, {"transforms": out["tf"]})
+        if "joint_states" in out:
+            self.wire.send(self.writers["joint_states"], msgs.JointState, out["joint_states"])
+
+    def publish_imu(self, dt: float, t: float) -> None:
+        if not self.heard("imu"):
+            self.io.imu_unheard()
+            return
+        self.wire.send(self.writers["imu"], msgs.Imu, self.io.imu(dt, t))
+
+    def publish_scan(self, session) -> bool:
+        listened = self.heard("scan")
+        values = self.io.scan(session)
+        if listened:
+            self.wire.send(self.writers["scan"], msgs.LaserScan, values)
+        return listened
+
+
+class DdsCamera:
+    """One camera's image and camera_info writers (the stack's names: ``camera/image_raw``)."""
+
+    def __init__(self, wire: "DdsWire", io: CameraIO, stack: str):
+        self.wire, self.io, self.every = wire, io, io.every
+        table = camera_topics(stack, io.image_topic, io.info_topic)
+        self.writers = {key: wire.writer(t.name, t.type, t.qos) for key, t in table.items()}
+
+    def publish(self, session, t: float) -> bool:
+        wanted = [k for k, w in self.writers.items() if w.get_publication_matched_status().current_count > 0]
+        if not wanted:
+            return False
+        rgb = self.io.picture(session)
+        if "image" in wanted:
+            self.wire.send(self.writers["image"], msgs.Image, self.io.image(rgb, t))
+        if "info" in wanted:
+            self.wire.send(self.writers["info"], msgs.CameraInfo, self.io.info(t))
+        return True
+
+
+class DdsWire(Wire):
+    """The simulator's DDS side: the participant, the shared writers, the robots, the findings about the nodes'
+    endpoints, and the trace."""
+
+    def __init__(self, session, config: dict, participant: Participant):
+        self.session, self.config, self.dp = session, config, participant
+        self.stack = config["stack"]
+        self.clock_every = clock_every(self.stack, session.time_step)
+        self.lock = threading.Lock()
+        self.paused = False
+        self.stopped = threading.Event()
+        self.findings: list[dict] = []
+        self.watcher, self.looked = None, 0.0
+        table = topics(self.stack)
+        self.writers = {key: self.writer(t.name, t.type, t.qos) for key, t in table.items() if not t.per_robot}
+        cmd_type = table["cmd_vel"].type
+        if self.stack == "jazzy" and config.get("cmd_vel") == "twist":
+            cmd_type = "geometry_msgs/msg/Twist"
+        self.robots: list[DdsRobot] = []
+        for i, entry in enumerate(config.get("robots") or [{}]):
+            robot = session.robots[0] if i == 0 else session.add_robot(
+                entry.get("robot") or "burger", entry["spawn"], name=entry.get("name") or f"robot_{i}",
+                mappings=entry.get("mappings"))
+            if i == 0 and entry.get("name"):
+                robot.name = entry["name"]
+            model = entry.get("robot") or config.get("robot") or "burger"
+            io = RobotIO(robot, entry.get("ns", "/"), (entry.get("tf_prefix") or entry.get("ns", "")).strip("/"),
+                         lock=self.lock, record_scans=bool(config.get("record_scans")), plugins=PLUGINS[self.stack],
+                         model=model if model in ("burger", "waffle", "waffle_pi") else "burger")
+            dds_robot = DdsRobot(self, io, self.stack, cmd_type)
+            dds_robot.cameras = [DdsCamera(self, CameraIO(robot, c, io.ns, io.prefix, session.time_step), self.stack)
+                                 for c in robot.profile.cameras if c.link in robot.link_index]
+            self.robots.append(dds_robot)
+        self.graded_robot = self._graded(config.get("graded"))
+        self.graded = self.graded_robot.io
+        self.trace = {"person": []}
+        self.person = None
+        if config.get("person"):
+            p = config["person"]
+            self.person = (session.add_mover(p["radius"], p["height"], "person", self.person_xy(0.0)), p)
+
+    def _graded(self, which) -> DdsRobot:
+        for robot in self.robots:
+            if which in (robot.ns, robot.ns.strip("/"), robot.robot.name):
+                return robot
+        return self.robots[0]
+
+    # -- endpoints -----------------------------------------------------------------------------------------
+
+    def writer(self, name: str, ros_type: str, qos: Qos):
+        return self.dp.writer(name, msgs.TYPES[ros_type], qos, type_hash=self.type_hash(ros_type))
+
+    def reader(self, name: str, ros_type: str, qos: Qos, on_data):
+        from cyclonedds.core import Listener
+        from cyclonedds.sub import DataReader
+
+        return DataReader(self.dp.dp, self.dp.topic(name, msgs.TYPES[ros_type]),
+                          endpoint_qos(qos, self.type_hash(ros_type)), listener=Listener(on_data_available=on_data))
+
+    def type_hash(self, ros_type: str) -> str | None:
+        if self.stack != "jazzy":   # Humble's rmw puts no type hash in USER_DATA
+            return None
+        from .typehash import type_hash
+
+        return type_hash(ros_type)
+
+    def send(self, writer, cls, values: dict) -> None:
+        writer.write(build(cls, values))
+
+    # -- the step loop's Wire ------------------------------------------------------------------------------
+
+    def shut_down(self) -> bool:
+        return self.stopped.is_set()
+
+    def drain(self) -> None:
+        """Between two steps: a look at the other participants' endpoints, a few times a second."""
+        now = time.monotonic()
+        if self.watcher is not None and now - self.looked > LOOK_EVERY:
+            self.looked = now
+            self.watcher.look()
+
+    def commanded(self) -> bool:
+        return self.graded_robot.cmd_reader.get_subscription_matched_status().current_count > 0
+
+    def publish_static(self) -> None:
+        t = self.session.t
+        self.send(self.writers["tf_static"], msgs.TFMessage,
+                  {"transforms": [tf for r in self.robots for tf in r.io.static_transforms(t)]})
+
+    def publish_clock(self) -> None:
+        self.send(self.writers["clock"], msgs.Clock, {"clock": self.session.t})
+
+    def publish_drive(self) -> None:
+        t = self.session.t
+        for robot in self.robots:
+            robot.io.now = t
+            robot.publish_drive(t)
+        if self.person is not None:
+            self.trace["person"].append([t, *self.person_xy(t)])
+
+    def publish_fast(self, dt: float) -> None:
+        for robot in self.robots:
+            robot.publish_imu(dt, self.session.t)
+
+    def publish_scans(self) -> bool:
+        listened = False
+        for robot in self.robots:
+            robot.io.answered.clear()
+            heard = robot.publish_scan(self.session)
+            listened = listened or (heard and robot is self.graded_robot)
+        return listened
+
+    def publish_cameras(self, step: int) -> None:
+        for robot in self.robots:
+            for camera in robot.cameras:
+                if step % camera.every == 0:
+                    camera.publish(self.session, self.session.t)
+
+    def person_xy(self, t: float) -> tuple:
+        p = self.config["person"]
+        angle = p["phase"] + p["speed"] * t / p["loop_radius"]
+        return (p["centre"][0] + p["loop_radius"] * math.cos(angle), p["centre"][1] + p["loop_radius"] * math.sin(angle))
+
+    def result(self) -> dict:
+        graded = self.graded.result()
+        return dict(graded, person=self.trace["person"], robot=self.config.get("robot") or "burger",
+                    robots=[r.io.result() for r in self.robots], findings=self.findings)
+
+
+class Watcher:
+    """The other participants and their endpoints, from DDS's built-in topics: who has come (the start), and
+    endpoints a Gazebo would ignore (a finding each, once): a publisher of another type on a robot's ``cmd_vel``, a
+    best-effort publisher on it (the plugin's subscription is reliable), a reliable subscriber to a best-effort
+    topic of the robot's (Humble's ``/clock``)."""
+
+    def __init__(self, wire: DdsWire):
+        from cyclonedds.builtin import BuiltinDataReader, BuiltinTopicDcpsParticipant, BuiltinTopicDcpsPublication, \
+            BuiltinTopicDcpsSubscription
+
+        self.wire = wire
+        dp = wire.dp.dp
+        self.own = dp.guid
+        self.participants = BuiltinDataReader(dp, BuiltinTopicDcpsParticipant)
+        self.publications = BuiltinDataReader(dp, BuiltinTopicDcpsPublication)
+        self.subscriptions = BuiltinDataReader(dp, BuiltinTopicDcpsSubscription)
+        self.others: set = set()
+        self.said: set = set()
+        self.cmd_topics = {"rt" + r.cmd_name: r for r in wire.robots}
+        table = topics(wire.stack)
+        self.best_effort = {"rt" + t.full_name(r.ns): t for r in wire.robots for t in table.values()
+                            if t.direction == "out" and not t.qos.reliable}
+
+    def look(self) -> None:
+        for sample in self.participants.take(N=256):
+            if getattr(sample, "key", None) is not None and sample.key != self.own:
+                self.others.add(sample.key)
+        for sample in self.publications.take(N=256):
+            robot = self.cmd_topics.get(getattr(sample, "topic_name", ""))
+            if robot is not None and sample.participant_key != self.own:
+                self._publication(robot, sample)
+        for sample in self.subscriptions.take(N=256):
+            topic = self.best_effort.get(getattr(sample, "topic_name", ""))
+            if topic is not None and sample.participant_key != self.own and _reliable(sample.qos):
+                self._say(("reliable", topic.name), "warning",
+                          f"a node subscribes to {topic.name} as reliable, but Gazebo publishes it best effort "
+                          f"({topic.qos.describe()}): that subscription receives nothing",
+                          "subscribe with qos_profile_sensor_data (or leave /clock to use_sim_time)")
+
+    def _publication(self, robot: DdsRobot, sample) -> None:
+        theirs = msgs.ros_type_name(sample.type_name) if "::dds_::" in sample.type_name else sample.type_name
+        ours = robot.cmd_type
+        if theirs != ours:
+            how = "geometry_msgs/msg/TwistStamped (header.stamp = now, the twist under .twist)" \
+                if ours.endswith("TwistStamped") else ours
+            self._say(("type", robot.cmd_name, theirs), "error",
+                      f"a node publishes {theirs} on {robot.cmd_name}, but the simulated {self.wire.stack} TurtleBot3 "
+                      f"takes {ours} there (as Gazebo's does): the robot does not move",
+                      f"publish {how}")
+        elif not _reliable(sample.qos):
+            self._say(("qos", robot.cmd_name), "error",
+                      f"a node publishes {robot.cmd_name} best effort, but Gazebo's subscription is reliable: "
+                      "the robot does not move", "publish cmd_vel with the default QoS (depth 10)")
+
+    def _say(self, key, severity: str, message: str, fix: str) -> None:
+        if key not in self.said:
+            self.said.add(key)
+            with self.wire.lock:
+                self.wire.findings.append({"check": "ros2", "severity": severity, "message": message, "fix": fix})
+
+
+def _reliable(qos) -> bool:
+    from cyclonedds.core import Policy
+
+    try:
+        return isinstance(qos[Policy.Reliability], Policy.Reliability.Reliable)
+    except (KeyError, TypeError):
+        return True   # DDS's default for a reader is best effort, for a writer reliable: only writers lack it
+
+
+def matched(wire: DdsWire) -> int:
+    """How many endpoints of others match the robot's own (its writers and cmd_vel readers)."""
+    count = 0
+    for robot in wire.robots:
+        count += robot.cmd_reader.get_subscription_matched_status().current_count
+        count += sum(w.get_publication_matched_status().current_count for w in robot.writers.values())
+    return count
+
+
+def wait_for_start(wire: DdsWire, watcher: Watcher, config: dict) -> None:
+    """Hold simulated time at 0 (publishing /clock) until the start file exists, or until ``expect`` other
+    participants are there and some endpoint of theirs matches the robot's, then :data:`SETTLE`."""
+    start_file, expect = config.get("start_file"), int(config.get("expect") or 0)
+    deadline = time.monotonic() + START_WAIT
+    seen = None
+    while time.monotonic() < deadline and not wire.stopped.is_set():
+        wire.publish_clock()
+        watcher.look()
+        if start_file and os.path.exists(start_file):
+            return
+        if expect and len(watcher.others) >= expect and matched(wire):
+            seen = seen or time.monotonic()
+            if time.monotonic() - seen >= SETTLE:
+                return
+        time.sleep(0.02)
+
+
+def _pids(config: dict) -> list:
+    """The nodes' process ids (the run writes them once they are started), for pacing at rate max."""
+    try:
+        return json.loads(Path(config["pids_file"]).read_text(encoding="utf-8")) if config.get("pids_file") else []
+    except (OSError, ValueError):
+        return []
+
+
+def _write_json(path: str, data: dict) -> None:
+    tmp = f"{path}.part"
+    with open(tmp, "w", encoding="utf-8") as fh:
+        json.dump(data, fh)
+    os.replace(tmp, path)
+
+
+def _has_camera(session, config: dict) -> bool:
+    if session.main.profile.cameras:
+        return True
+    others = (config.get("robots") or [{}])[1:]
+    return any(robot_profile(robot_urdf(e.get("robot") or "burger", e.get("mappings"))).cameras for e in others)
+
+
+def main(argv: list) -> int:
+    config = json.loads(Path(argv[0]).read_text(encoding="utf-8"))
+    try:
+        first = (config.get("robots") or [{}])[0]
+        session = Session(Scene.load(config["scene_file"]), first.get("robot") or config.get("robot") or "burger",
+                          tuple(first.get("spawn") or config["spawn"]), no_hit=config.get("no_hit", "inf"),
+                          seed=config.get("seed", 0), mappings=first.get("mappings"),
+                          name=first.get("name") or model_name(config.get("robot")))
+        if _has_camera(session, config):
+            session.open_cameras()
+    except WorldgenError as err:
+        print(f"worldgen: error: {err}", file=sys.stderr, flush=True)
+        return 2
+    discovery = Discovery(config.get("discovery") or "localhost")
+    timing = {"sim_time_s": 0.0, "wall_time_s": 0.0, "real_time_factor": None, "interrupted": True}
+    with session, Participant(int(config["domain"]), discovery) as participant:
+        wire = DdsWire(session, config, participant)
+        from .discovery import announce
+
+        graph = announce(participant, wire)
+        watcher = Watcher(wire)
+        wire.publish_static()
+        try:
+            deliver_interrupts()
+            wait_for_start(wire, watcher, config)
+            print("worldgen-sim: running", file=sys.stderr, flush=True)
+            wire.watcher = watcher
+            timing = run_loop(wire, float(config.get("rate") or 0.0), config.get("duration"), _pids(config),
+                              udp=True)
+            watcher.look()
+        except KeyboardInterrupt:
+            pass
+        finally:
+            ignore_interrupts()
+            with wire.lock:
+                if config.get("trace"):
+                    _write_json(config["trace"], dict(wire.result(), timing=timing))
+            graph.close()
+    return 0
+
+
+if __name__ == "__main__":
+    run_main(main)
