@@ -70,6 +70,12 @@ def box_outline(centre: Point, size: Tuple[float, float], yaw: float) -> List[Po
             for x, y in ((-hx, -hy), (hx, -hy), (hx, hy), (-hx, hy))]
 
 
+def dist(a: Point, b: Point) -> float:
+    """The distance between two points (:func:`math.dist` has changed its rounding between Python versions)."""
+    dx, dy = a[0] - b[0], a[1] - b[1]
+    return math.sqrt(dx * dx + dy * dy)
+
+
 def point_segment(p: Point, a: Point, b: Point) -> float:
     """The distance from ``p`` to the segment a–b."""
     dx, dy = b[0] - a[0], b[1] - a[1]
@@ -88,22 +94,30 @@ def inside_convex(p: Point, polygon: Sequence[Point]) -> bool:
     return all((b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]) >= 0 for a, b in _edges(polygon))
 
 
-def _separated(a: Sequence[Point], b: Sequence[Point]) -> bool:
-    """Whether an edge of either convex polygon separates them (the separating axis test)."""
+def _separation(a: Sequence[Point], b: Sequence[Point]) -> float:
+    """The widest gap an edge of either convex polygon (counter-clockwise) leaves between them along its normal:
+    a lower bound of their distance, and their distance when a face of one is what is nearest the other; at most
+    0 when they overlap (the separating axis test)."""
+    best = -INF
     for poly, other in ((a, b), (b, a)):
         for p, q in _edges(poly):
             nx, ny = q[1] - p[1], p[0] - q[0]   # outward normal of a counter-clockwise edge
-            if min((v[0] - p[0]) * nx + (v[1] - p[1]) * ny for v in other) >= 0:
-                return True
-    return False
+            length = math.sqrt(nx * nx + ny * ny)
+            best = max(best, min((v[0] - p[0]) * nx + (v[1] - p[1]) * ny for v in other) / length)
+    return best
 
 
 def convex_distance(a: Sequence[Point], b: Sequence[Point]) -> float:
     """The distance between two counter-clockwise convex polygons (0 when they overlap)."""
-    if not _separated(a, b):
+    if _separation(a, b) <= 0:
         return 0.0
     return min(min(point_segment(p, *e) for p in a for e in _edges(b)),
                min(point_segment(p, *e) for p in b for e in _edges(a)))
+
+
+def convex_apart(a: Sequence[Point], b: Sequence[Point], gap: float) -> bool:
+    """Whether two counter-clockwise convex polygons are at least ``gap`` apart."""
+    return _separation(a, b) >= gap or convex_distance(a, b) >= gap
 
 
 def convex_circle_distance(polygon: Sequence[Point], centre: Point, radius: float) -> float:
@@ -132,7 +146,7 @@ def ray_hit(origin: Point, direction: Point, segments: Iterable[Tuple[Point, Poi
 
 
 def band_hit(origin: Point, heading: float, half_width: float, segments: Sequence[Tuple[Point, Point]],
-             rays: int = 5) -> Tuple[float, float]:
+             rays: int = 3) -> Tuple[float, float]:
     """How far rays across a band ``2·half_width`` wide, sent from ``origin`` along ``heading``, travel before
     ``segments`` stop them: (the shortest, the longest). A wall square across the band stops them all alike; a
     doorway or a corner in the band lets some go on."""
