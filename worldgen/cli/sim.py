@@ -8,6 +8,7 @@ from pathlib import Path
 import click
 
 from .drive import FiniteFloat
+from .ros import cmd_vel_option, ros_option
 
 
 @click.command("sim")
@@ -24,7 +25,9 @@ from .drive import FiniteFloat
               help="Stop after S simulated seconds (default: run until Ctrl-C).")
 @click.option("--lidar-no-hit", type=click.Choice(["inf", "zero"]), default="inf", show_default=True,
               help="What a beam that hits nothing reads: inf as in Gazebo, 0 as the real LDS-01 driver.")
-def sim(world, spawn, launch_file, robot, rate, duration, lidar_no_hit):
+@ros_option
+@cmd_vel_option
+def sim(world, spawn, launch_file, robot, rate, duration, lidar_no_hit, ros, cmd_vel):
     """Run the simulated TurtleBot3 in WORLD (a .world file, a floorplan spec or a launch file) as ROS nodes see
     Gazebo: /scan, /odom, /tf, /tf_static, /joint_states, /imu and /clock out, /cmd_vel in, and the
     /gazebo/reset_world and /gazebo/reset_simulation services.
@@ -32,6 +35,9 @@ def sim(world, spawn, launch_file, robot, rate, duration, lidar_no_hit):
     Joins the master at ROS_MASTER_URI, or starts one there when none answers (and stops it on exit). Sets
     /use_sim_time. Runs until Ctrl-C or --duration. With a launch file, first warns about modules its own
     nodes import that are not installed (see `worldgen doctor`).
+
+    With --ros humble|jazzy: the same robot over ROS 2 (DDS) as Gazebo's plugins (humble) or ros_gz_bridge
+    (jazzy) publish it, on ROS_DOMAIN_ID.
     """
     from ..core.spawnpose import parse_spawn
     from ..bridge.outcome import parse_rate
@@ -41,6 +47,10 @@ def sim(world, spawn, launch_file, robot, rate, duration, lidar_no_hit):
     pace = parse_rate(rate)
     loaded = load_world(world, spawn=parse_spawn(spawn) if spawn is not None else None, robot=robot,
                         launch=launch_file)
+    if ros != "noetic":
+        from ..ros2.simcmd import sim as run_sim2   # the ROS 2 extra (cyclonedds), only when asked for
+
+        sys.exit(run_sim2(loaded, stack=ros, cmd_vel=cmd_vel, rate=pace, duration=duration, no_hit=lidar_no_hit))
     _warn_about_launch_nodes(world, launch_file)
     sys.exit(run_sim(loaded, rate=pace, duration=duration, no_hit=lidar_no_hit))
 

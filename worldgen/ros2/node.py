@@ -326,6 +326,8 @@ def wait_for_start(wire: DdsWire, watcher: Watcher, config: dict) -> None:
     """Hold simulated time at 0 (publishing /clock) until the start file exists, or until ``expect`` other
     participants are there and some endpoint of theirs matches the robot's, then :data:`SETTLE`."""
     start_file, expect = config.get("start_file"), int(config.get("expect") or 0)
+    if not start_file and not expect:   # worldgen sim: at once
+        return
     deadline = time.monotonic() + START_WAIT
     seen = None
     while time.monotonic() < deadline and not wire.stopped.is_set():
@@ -376,6 +378,7 @@ def main(argv: list) -> int:
         print(f"worldgen: error: {err}", file=sys.stderr, flush=True)
         return 2
     discovery = Discovery(config.get("discovery") or "localhost")
+    duration = config.get("duration")
     timing = {"sim_time_s": 0.0, "wall_time_s": 0.0, "real_time_factor": None, "interrupted": True}
     with session, Participant(int(config["domain"]), discovery) as participant:
         wire = DdsWire(session, config, participant)
@@ -389,7 +392,7 @@ def main(argv: list) -> int:
             wait_for_start(wire, watcher, config)
             print("worldgen-sim: running", file=sys.stderr, flush=True)
             wire.watcher = watcher
-            timing = run_loop(wire, float(config.get("rate") or 0.0), config.get("duration"), _pids(config),
+            timing = run_loop(wire, float(config.get("rate") or 0.0), duration, _pids(config),
                               udp=True)
             watcher.look()
         except KeyboardInterrupt:
