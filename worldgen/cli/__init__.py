@@ -58,8 +58,8 @@ def main() -> None:
     """Gazebo worlds for TurtleBot3 classes: build them from text, launch them, check them headless."""
 
 
-from . import build, doctor, drive, new, preview, ros, run, sim, validate, view  # noqa: E402  (each registers its commands)
+from . import build, doctor, drive, generate, new, preview, ros, run, sim, validate, view  # noqa: E402  (each registers its commands)
 
-for _module in (new, build, preview, view, ros, validate, drive, sim, run, doctor):
+for _module in (new, build, generate, preview, view, ros, validate, drive, sim, run, doctor):
     for _command in _module.COMMANDS:
         main.add_command(_command)

@@ -15,7 +15,7 @@ from typing import Dict, List
 from ..spec.model import Spec
 from .options import KINDS, check_batch, command_line, make_options
 from .rng import Rng
-from .robot import robot_space
+from .robot import RobotSpace, robot_space
 from .text import spec_text
 
 
@@ -38,16 +38,17 @@ def _kind_module(kind: str):
     return import_module(f"{__package__}.{kind}")
 
 
-def resolved(kind: str, options):
+def resolved(kind: str, options, space: RobotSpace | None = None):
     """``options`` with every value left to the robot filled in (what the header writes)."""
-    return _kind_module(kind).resolve(options, robot_space(options.robot))
+    return _kind_module(kind).resolve(options, space or robot_space(options.robot))
 
 
-def make_world(kind: str, seed: int, options) -> World:
-    """The world ``seed`` of ``kind`` (options already checked and resolved)."""
+def make_world(kind: str, seed: int, options, space: RobotSpace | None = None) -> World:
+    """The world ``seed`` of ``kind`` (options already checked and resolved); ``space``: the robot's, when
+    known (else measured from its description)."""
     module = _kind_module(kind)
     name = f"{kind}_{seed}"
-    spec, summary = module.make(name, options, robot_space(options.robot), Rng(seed))
+    spec, summary = module.make(name, options, space or robot_space(options.robot), Rng(seed))
     command = command_line(kind, seed, options)
     header = [f"{name}: {summary}, for the {options.robot}.",
               "Made by this command, which makes the same file on every machine:",
@@ -56,13 +57,16 @@ def make_world(kind: str, seed: int, options) -> World:
     return World(name, seed, spec, spec_text(spec, header), command)
 
 
-def generate(kind: str, seed: int, count: int = 1, values: Dict | None = None) -> List[World]:
+def generate(kind: str, seed: int, count: int = 1, values: Dict | None = None, space: RobotSpace | None = None
+             ) -> List[World]:
     """``count`` worlds of ``kind`` from seeds ``seed`` … ``seed + count − 1``; ``values`` are the options by field
-    name (None or missing: the default). InputError for a value out of its range."""
+    name (None or missing: the default). InputError for a value out of its range. ``space`` stands in for the
+    robot's measured one (the determinism tests run without the robot descriptions' dependencies)."""
     options = make_options(kind, dict(values or {}))
     check_batch(seed, count)
-    options = resolved(kind, options)
-    return [make_world(kind, s, options) for s in range(seed, seed + count)]
+    space = space or robot_space(options.robot)
+    options = resolved(kind, options, space)
+    return [make_world(kind, s, options, space) for s in range(seed, seed + count)]
 
 
 __all__ = ["KINDS", "World", "generate", "make_world", "resolved"]
