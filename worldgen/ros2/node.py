@@ -97,9 +97,9 @@ class DdsRobot:
 class DdsCamera:
     """One camera's image and camera_info writers (the stack's names: ``camera/image_raw``)."""
 
-    def __init__(self, wire: "DdsWire", io: CameraIO, stack: str):
+    def __init__(self, wire: "DdsWire", io: CameraIO, stack: str, ns: str):
         self.wire, self.io, self.every = wire, io, io.every
-        table = camera_topics(stack, io.image_topic, io.info_topic)
+        table = camera_topics(stack, join(ns, "camera/image_raw"), join(ns, "camera/camera_info"))
         self.writers = {key: wire.writer(t.name, t.type, t.qos) for key, t in table.items()}
 
     def publish(self, session, t: float) -> bool:
@@ -144,7 +144,8 @@ class DdsWire(Wire):
                          lock=self.lock, record_scans=bool(config.get("record_scans")), plugins=PLUGINS[self.stack],
                          model=model if model in ("burger", "waffle", "waffle_pi") else "burger")
             dds_robot = DdsRobot(self, io, self.stack, cmd_type)
-            dds_robot.cameras = [DdsCamera(self, CameraIO(robot, c, io.ns, io.prefix, session.time_step), self.stack)
+            dds_robot.cameras = [DdsCamera(self, CameraIO(robot, c, io.ns, io.prefix, session.time_step), self.stack,
+                                           io.ns)
                                  for c in robot.profile.cameras if c.link in robot.link_index]
             self.robots.append(dds_robot)
         self.graded_robot = self._graded(config.get("graded"))
