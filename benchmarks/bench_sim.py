@@ -78,8 +78,10 @@ def bench_session(name: str, scene: Scene, spawn, repeats: int = 3) -> None:
 
 def bench_exercise(name: str, world, spawn) -> None:
     """A complete spin + stop-at-wall (kp 0.5), in-process and through run_isolated (process start included)."""
-    from worldgen.sim.behaviours import settle, spin, stop_at_wall
     from worldgen.check.sources import load_scene, run_on_scene
+    from worldgen.core.stoplaw import StopLaw
+    from worldgen.sim.behaviours import settle, spin, stop_at_wall
+    from worldgen.sim.exercise import Exercise
     from worldgen.sim.session import Session
 
     scene = scene_of(world)
@@ -87,7 +89,7 @@ def bench_exercise(name: str, world, spawn) -> None:
     with Session(scene, "burger", spawn) as session:
         settle(session, 0.5)
         turn = spin(session, seconds=2 * math.pi / 1.5, omega=1.5)
-        stop = stop_at_wall(session, target=0.5, kp=0.5, duration=20.0)
+        stop = stop_at_wall(session, StopLaw(target=0.5, kp=0.5), duration=20.0)
         sim = session.t
     wall = time.perf_counter() - t0
     final = "-" if stop.final_distance is None else f"{stop.final_distance:.3f} m"
@@ -97,7 +99,7 @@ def bench_exercise(name: str, world, spawn) -> None:
         t0 = time.perf_counter()
         read, _ = load_scene(world, model_paths=[str(CORPUS / "gazebo_models")])
         run_on_scene("worldgen.sim.exercise:drive_exercise", read,
-                     {"world": world, "behaviour": "stop-at-wall", "spawn": list(spawn)}, 120.0)
+                     {"world": world, "exercise": Exercise(spawn=tuple(spawn)).to_dict()}, 120.0)
         print(f"  worldgen drive's job (read world + stop-at-wall, isolated process): "
               f"{time.perf_counter() - t0:.2f} s wall")
 

@@ -9,6 +9,7 @@ import pytest
 from test_enclosure import square_room, wall
 from worldgen.check.checks import (check_enclosed, check_parse, check_spawn_clear, floor_under, robot_body,
                              sim_findings)
+from worldgen.check.sim_results import SimNumbers
 from worldgen.core.findings import Finding
 from worldgen.core.scene import Scene, Shape
 
@@ -149,7 +150,8 @@ def test_parse_carries_the_reader_findings():
 
 # ------------------------------------------------------------------------------------------ simulated numbers
 
-def numbers(**parts):
+def numbers(**parts) -> SimNumbers:
+    """The child's answer (as JSON gives it) with ``parts`` changed, parsed into the record the checks judge."""
     base = {
         "ran": ["settle", "lidar", "spin", "stop-at-wall"], "failed": {},
         "settle": {"time": 1.0, "z": 0.0, "moved": 0.0, "tilt_deg": 0.3, "contact_points": []},
@@ -160,7 +162,7 @@ def numbers(**parts):
     }
     for key, value in parts.items():
         base[key] = {**base[key], **value} if isinstance(value, dict) else value
-    return base
+    return SimNumbers.from_dict(base)
 
 
 def test_good_numbers_give_no_findings_and_the_metrics():
@@ -223,3 +225,18 @@ def test_standing_on_a_floor_slab_is_not_touching():
                      stop={"touched": [slab]}, settle={"z": 0.05})
     assert errors(sim_findings(rolled, "inf", ground=0.05, floor=slab)) == []
     assert {f.check for f in errors(sim_findings(rolled, "inf"))} == {"spin", "stop-at-wall", "settle"}
+
+
+def test_the_childs_numbers_cross_as_json_and_parse_into_the_same_record():
+    """What the simulator child sends (``to_dict`` through JSON, inf included) is parsed once into the record it
+    was; a key the records do not have is refused rather than read by mistake."""
+    import json
+
+    sent = numbers(lidar={"no_hit": 3, "no_hit_reading": math.inf, "front_no_hit": True},
+                   spin={"touched": ["box"], "contact_points": [{"shape": "box", "link": "base_link", "time": 1.5}]})
+    received = SimNumbers.from_dict(json.loads(json.dumps(sent.to_dict())))
+    assert received == sent
+    assert received.spin.contact_points[0].link == "base_link" and received.lidar.no_hit_reading == math.inf
+    assert sim_findings(sent.to_dict(), "inf").findings == sim_findings(sent, "inf").findings
+    with pytest.raises(TypeError):
+        SimNumbers.from_dict({**sent.to_dict(), "spin": {"drift": 0.0, "turned": 0.0, "drfit": 1.0}})

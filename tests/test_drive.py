@@ -11,6 +11,7 @@ from conftest import CliRunner
 
 from worldgen.cli import main
 from worldgen.cli.drive import gain_sets
+from worldgen.sim.exercise import Gains
 from worldgen.core.errors import InputError
 from worldgen.sim.process import SimCrashed, SimError, run_isolated
 
@@ -66,8 +67,8 @@ def test_run_isolated_reports_crashes_and_timeouts(child_env):
 
 
 def test_gain_sets():
-    assert gain_sets((), (), ()) == [{"kp": 0.5, "ki": 0.0, "kd": 0.0}]
-    assert gain_sets((0.3, 1.0), (0.1,), ()) == [{"kp": 0.3, "ki": 0.1, "kd": 0.0}, {"kp": 1.0, "ki": 0.1, "kd": 0.0}]
+    assert gain_sets((), (), ()) == (Gains(kp=0.5, ki=0.0, kd=0.0),)
+    assert gain_sets((0.3, 1.0), (0.1,), ()) == (Gains(kp=0.3, ki=0.1, kd=0.0), Gains(kp=1.0, ki=0.1, kd=0.0))
     with pytest.raises(InputError, match="--kd is given 2 times for 3 runs"):
         gain_sets((1, 2, 3), (), (0.1, 0.2))
 

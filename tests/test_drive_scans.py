@@ -3,6 +3,7 @@ and ranges checked against the room's geometry and the run's own distance figure
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 
@@ -39,11 +40,10 @@ def world(tmp_path_factory):
 def drive(world, **request):
     """``drive_one`` as ``worldgen drive`` calls it (the exercise in a child process), with ``request``'s changes."""
     from worldgen.check.drive_targets import drive_one
+    from worldgen.sim.exercise import Exercise, Gains
 
-    base = {"behaviour": "stop-at-wall", "robot": None, "spawn": list(SPAWN), "gains": [{"kp": 0.5, "ki": 0.0,
-            "kd": 0.0}], "target": 0.5, "duration": 16.0, "max_speed": 0.22, "omega": 1.0, "rate": 5.0,
-            "front_angle": 10.0, "no_hit": "inf", "tolerance": 0.05, "stop_band": 0.02}
-    return drive_one(world, "world", {**base, **request}, [], timeout=120.0)
+    base = Exercise(spawn=tuple(SPAWN), gains=(Gains(kp=0.5),), target=0.5, duration=16.0, stop_band=0.02)
+    return drive_one(world, "world", dataclasses.replace(base, **request), [], timeout=120.0)
 
 
 @pytest.fixture(scope="module")
@@ -124,7 +124,7 @@ def test_a_faster_control_loop_records_at_most_five_scans_a_second(world):
 
 
 def test_spin_records_scans_turning_with_the_robot(world):
-    result = drive(world, behaviour="spin", spawn=[0.0, 0.0, 0.0], omega=1.5, duration=2.0, record_scans=True)
+    result = drive(world, behaviour="spin", spawn=(0.0, 0.0, 0.0), omega=1.5, duration=2.0, record_scans=True)
     s = result["runs"][0]["series"]
     assert result["lidar"]["count"] == 360 and len(s["scan"]) == len(s["t"])
     rows = [(yaw, row) for yaw, row in zip(s["yaw"], s["scan"]) if row is not None]

@@ -13,7 +13,7 @@ from rosstubs import need, ros_env
 from worldgen.cli import main
 from worldgen.core.errors import InputError
 from worldgen.packages.check import check_package
-from worldgen.packages.catkin import package_request
+from worldgen.packages.catkin import PackageArgs, package_request
 
 # catkin_create_pkg argument sets: plain class package, everything at once, no dependencies, messages, C++
 ARG_SETS = [
@@ -200,8 +200,9 @@ def test_scaffold_with_a_world(tmp_path):
 
 def test_request_validation_is_a_library_function():
     with pytest.raises(InputError):
-        package_request("Bad")
-    req = package_request("ok_pkg", ["std_msgs", "catkin", "rospy", "std_msgs"], maintainers=["Z Last", "A First"])
+        package_request(PackageArgs("Bad"))
+    req = package_request(PackageArgs("ok_pkg", ("std_msgs", "catkin", "rospy", "std_msgs"),
+                                      maintainers=("Z Last", "A First")))
     assert req.catkin_deps == ("rospy", "std_msgs")
     assert [m.email for m in req.maintainers] == ["First@todo.todo", "Last@todo.todo"]
 
@@ -214,7 +215,7 @@ def test_check_package_finds_what_breaks(tmp_path):
     spec = tmp_path / "room.yaml"
     spec.write_text("name: room\nrooms:\n  - name: a\n    rect: {center: [0, 0], size: [4, 4]}\n"
                     "robot: {at: [0, 0]}\n")
-    pkg = create_package(tmp_path, package_request("checked", ["rospy"]), world_spec=spec)
+    pkg = create_package(tmp_path, package_request(PackageArgs("checked", ("rospy",))), world_spec=spec)
     (pkg / "scripts" / "go.py").write_text("#!/usr/bin/env python3\n")
     (pkg / "scripts" / "go.py").chmod(0o755)
     assert [f for f in check_package(pkg, environ={}) if f.severity in ("error", "warning")] == []

@@ -9,6 +9,7 @@ import math
 import numpy as np
 import pytest
 
+from worldgen.core.stoplaw import StopLaw
 from worldgen.robots.profile import DriveParams
 from worldgen.core.scene import Scene, Shape
 from worldgen.sim.behaviours import settle, spin, stop_at_wall
@@ -53,7 +54,7 @@ def test_ground_plane_added_only_when_missing():
 
 
 def test_scan_matches_room_geometry_and_gazebo_angles():
-    with Session(room(), spawn=(0.0, 0.0, math.pi / 2), noise=False) as session:
+    with Session(room(), spawn=(0.0, 0.0, math.pi / 2), seed=None) as session:
         scan = session.scan()
         assert len(scan.ranges) == 360
         assert scan.angle_increment == pytest.approx(6.28319 / 359)
@@ -90,7 +91,7 @@ def test_lidar_ignores_the_robot_and_sees_a_mesh():
     box = trimesh.creation.box((0.1, 2.0, 1.0))
     wall = Shape("mesh", (1.0 + BURGER_SCAN_X + 0.05, 0.0, 0.5), vertices=np.asarray(box.vertices),
                  faces=np.asarray(box.faces), model="maze", link="link", name="mesh")
-    with Session(Scene(source=None, shapes=[wall]), noise=False) as session:
+    with Session(Scene(source=None, shapes=[wall]), seed=None) as session:
         scan = session.scan()
         assert front_distance(scan, true=True) == pytest.approx(1.0, abs=0.002)
         finite = [r for r in scan.true_ranges if math.isfinite(r)]
@@ -145,7 +146,7 @@ def test_diff_drive_ramps_from_its_own_stale_speed_as_the_plugin_does():
 
 def test_drives_and_stops_like_the_plugin():
     """0.2 m/s for 2 s: 0.4 m less the ramp's 0.02 m; stopping from 0.22 m/s at 1 m/s² takes ~0.024 m."""
-    with Session(None, noise=False) as session:
+    with Session(None, seed=None) as session:
         settle(session, 0.3)
         session.cmd_vel(0.2)
         session.run(2.0)
@@ -178,7 +179,7 @@ def test_spin_waffle():
 @pytest.mark.parametrize("kp", [0.5, 1.0])
 def test_stop_at_wall_with_a_proportional_gain(kp):
     with Session(room(half=1.5), spawn=(-0.5, 0.0, 0.0)) as session:
-        result = stop_at_wall(session, target=0.5, kp=kp, duration=16.0)
+        result = stop_at_wall(session, StopLaw(target=0.5, kp=kp), duration=16.0)
     assert result.final_distance == pytest.approx(0.5, abs=0.05)
     assert result.contacts == [] and result.stopped and result.ok
     assert result.overshoot < 0.02
@@ -191,7 +192,7 @@ def test_stop_at_wall_too_fast_to_stop_hits_the_wall():
     """Fast, with a target closer than the 1 m/s² ramp's braking distance (and the 5 Hz loop seeing the wall
     late): the robot drives into the wall, and that is reported, not hidden."""
     with Session(room(half=1.5), spawn=(-0.5, 0.0, 0.0)) as session:
-        result = stop_at_wall(session, target=0.15, kp=2.0, max_speed=1.0, duration=12.0)
+        result = stop_at_wall(session, StopLaw(target=0.15, kp=2.0, max_speed=1.0), duration=12.0)
     assert not result.ok and result.contacts
     assert result.contacts[0]["shape"].startswith("room/Wall_")
     assert result.min_distance < 0.15
@@ -201,7 +202,7 @@ def test_stop_at_wall_never_reverses_and_holds_with_pi_gains():
     """A PI controller's wound-up integral cannot drive the robot backwards or past the stop: the law stops
     and holds within the stop band, as the generated node does."""
     with Session(room(half=1.5), spawn=(-0.5, 0.0, 0.0)) as session:
-        result = stop_at_wall(session, target=0.5, kp=0.5, ki=0.3, kd=0.2, duration=16.0)
+        result = stop_at_wall(session, StopLaw(target=0.5, kp=0.5, ki=0.3, kd=0.2), duration=16.0)
     assert min(result.series["v_cmd"]) == 0.0 and min(result.series["v"]) > -0.005
     assert result.ok and result.stopped and result.stop_time is not None
     assert result.overshoot < 0.04   # the ramp's braking distance from 0.22 m/s
@@ -228,7 +229,7 @@ def test_a_turn_slowed_in_small_steps_leaves_a_stale_ramp_that_exercises_start_w
     from the turn's stale wheel speeds); each exercise starts with the ramp synced to the standing wheels."""
     headings = []
     for fresh in (False, True):
-        with Session(None, noise=False) as session:
+        with Session(None, seed=None) as session:
             settle(session, 0.3)
             for omega in (1.0, 1.0, 0.9, 0.8, 0.7, 0.6, 0.5, 0.4, 0.3, 0.2, 0.1, 0.0):
                 session.cmd_vel(0.0, omega)   # rim steps of 0.008 m/s: each set directly

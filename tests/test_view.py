@@ -240,12 +240,11 @@ def test_a_drive_replay_puts_contacts_at_the_exercise_s_time():
 
 def test_a_spin_replay_shows_the_stop_it_commanded(tmp_path):
     from worldgen.check.drive_targets import drive_one
+    from worldgen.sim.exercise import Exercise
     from worldgen.view.replay import drive_replay
 
-    request = {"behaviour": "spin", "robot": None, "spawn": None, "gains": [{}], "target": 0.5, "duration": 2.0,
-               "max_speed": 0.22, "omega": 1.5, "rate": 5.0, "front_angle": 10.0, "no_hit": "inf",
-               "tolerance": 0.05, "stop_band": None, "record_scans": True}
-    result = drive_one(EXAMPLES / "enclosed_room.yaml", "spec", request, ())
+    exercise = Exercise(behaviour="spin", duration=2.0, omega=1.5, record_scans=True)
+    result = drive_one(EXAMPLES / "enclosed_room.yaml", "spec", exercise, ())
     replay = drive_replay(result)
     turning = [w for t, w in zip(replay["t"], replay["w"]) if t < 1.9]
     stopping = [w for t, w in zip(replay["t"], replay["w"]) if t > 2.05]

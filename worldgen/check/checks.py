@@ -5,19 +5,20 @@ Geometric checks run here, in the calling process: ``parse`` (the reader's own f
 :mod:`worldgen.geometry.enclosure`) and ``spawn-clear``; so does the optional ``sdformat`` (libsdformat's own check, in a
 child process of its own). The simulated checks — ``settle``, ``lidar``, ``spin`` and
 ``stop-at-wall`` — run together in one child process per world (:mod:`worldgen.check.sim_job`), which returns
-plain numbers; :func:`sim_findings` judges them.
+what it measured as a typed record (:mod:`worldgen.check.sim_results`); :func:`sim_findings` judges it.
 """
 
 from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 from ..core.findings import Finding
 from ..core.scene import Scene
 from ..robots.body import RobotBody, robot_body  # noqa: F401  (the checks' robot; validate imports it from here)
+from .sim_results import Scanned, Settled, SimNumbers, Stopped
 
 GEOMETRIC_CHECKS = ("parse", "enclosed", "spawn-clear")
 SIM_CHECKS = ("settle", "lidar", "spin", "stop-at-wall")
@@ -270,83 +271,94 @@ def _sdformat_finding(message) -> Finding:
 
 # ------------------------------------------------------------------------------------------ simulated checks
 
-def sim_findings(numbers: dict, no_hit: str, ground: float = 0.0, floor: str | None = None) -> Outcome:
-    """Judge the numbers :func:`worldgen.check.sim_job.sim_numbers` measured (missing parts are skipped).
-    ``no_hit`` is what a beam that hits nothing reads ("inf" or "zero"); ``ground`` is the floor's height at the
-    spawn and ``floor`` the floor slab's label, if any: standing on it is no touching."""
+def sim_findings(numbers: SimNumbers | dict, no_hit: str, ground: float = 0.0, floor: str | None = None) -> Outcome:
+    """Judge what :func:`worldgen.check.sim_job.sim_numbers` measured (parts that did not run are skipped; a
+    dict, as the child process sends it, is parsed once into the record here). ``no_hit`` is what a beam that
+    hits nothing reads ("inf" or "zero"); ``ground`` is the floor's height at the spawn and ``floor`` the floor
+    slab's label, if any: standing on it is no touching."""
+    if isinstance(numbers, dict):
+        numbers = SimNumbers.from_dict(numbers)
+    if floor is not None:
+        numbers = _off_the_floor(numbers, floor)
     findings: list[Finding] = []
     metrics: dict = {}
-    numbers = dict(numbers)
-    for part in ("settle", "spin", "stop"):
-        if numbers.get(part) and floor is not None:
-            numbers[part] = {**numbers[part],
-                             "touched": [t for t in numbers[part].get("touched", []) if t != floor],
-                             "contact_points": [c for c in numbers[part].get("contact_points", [])
-                                                if c["shape"] != floor]}
-    settle = numbers.get("settle")
-    if settle:
-        metrics.update(settle_tilt_deg=settle["tilt_deg"], settle_height_m=settle["z"],
-                       settle_moved_m=settle["moved"])
-        if settle["tilt_deg"] > TILT_LIMIT:
-            findings.append(Finding("settle", "error",
-                                    f"after {settle['time']:.1f} s the robot is tipped {settle['tilt_deg']:.0f}°",
-                                    where=_contacts_text(settle), fix="spawn it on flat, free floor"))
-        elif abs(settle["z"] - ground) > GROUND_LIMIT:
-            fell = settle["z"] < ground
-            findings.append(Finding(
-                "settle", "error",
-                f"after {settle['time']:.1f} s the robot is {settle['z'] - ground:+.3f} m from the floor "
-                + ("(it fell through: there is no ground under it)" if fell else "(it rests on something)"),
-                where=_contacts_text(settle),
-                fix="give the world a ground plane" if fell else "spawn it on free floor, clear of obstacles"))
-    scan = numbers.get("lidar")
-    if scan:
-        metrics.update(lidar_beams=scan["beams"], lidar_no_hit_beams=scan["no_hit"],
-                       lidar_no_hit_value=no_hit, lidar_no_hit_reading=scan.get("no_hit_reading"),
-                       lidar_nearest_m=scan["nearest"],
-                       lidar_nearest_bearing_deg=scan["nearest_bearing_deg"], lidar_farthest_m=scan["farthest"])
-        metrics["lidar_front_no_hit"] = scan.get("front_no_hit")
+    if numbers.settle is not None:
+        findings += _settle_findings(numbers.settle, ground, metrics)
+    scan = numbers.lidar
+    if scan is not None:
+        metrics.update(lidar_beams=scan.beams, lidar_no_hit_beams=scan.no_hit, lidar_no_hit_value=no_hit,
+                       lidar_no_hit_reading=scan.no_hit_reading, lidar_nearest_m=scan.nearest,
+                       lidar_nearest_bearing_deg=scan.nearest_bearing_deg, lidar_farthest_m=scan.farthest)
+        metrics["lidar_front_no_hit"] = scan.front_no_hit
         finding = lidar_no_hit_finding(scan, no_hit)
         if finding is not None:
             findings.append(finding)
-    spin = numbers.get("spin")
-    if spin:
-        metrics.update(spin_drift_m=spin["drift"], spin_turned_rad=spin["turned"], spin_touched=spin["touched"])
-        if spin["touched"]:
-            findings.append(Finding("spin", "error",
-                                    f"spinning in place the robot touched {', '.join(spin['touched'])}",
-                                    where=_contacts_text(spin),
+    spin = numbers.spin
+    if spin is not None:
+        metrics.update(spin_drift_m=spin.drift, spin_turned_rad=spin.turned, spin_touched=list(spin.touched))
+        if spin.touched:
+            findings.append(Finding("spin", "error", f"spinning in place the robot touched {', '.join(spin.touched)}",
+                                    where=_contacts_text(spin.contact_points),
                                     fix="move the spawn away from walls and obstacles"))
-        elif spin["drift"] > SPIN_DRIFT_LIMIT:
+        elif spin.drift > SPIN_DRIFT_LIMIT:
             findings.append(Finding("spin", "error",
-                                    f"spinning in place the robot drifted {spin['drift'] * 100:.1f} cm "
+                                    f"spinning in place the robot drifted {spin.drift * 100:.1f} cm "
                                     f"(more than {SPIN_DRIFT_LIMIT * 100:.0f} cm)",
                                     fix="spawn it on flat floor clear of obstacles"))
-    stop = numbers.get("stop")
-    if stop:
-        metrics.update(stop_distance_m=stop.get("distance"), stop_touched=stop.get("touched", []),
-                       stop_time_s=stop.get("time"), stop_target_m=STOP_TARGET,
-                       stop_heading_deg=stop.get("heading_deg"))
-        if stop.get("no_wall"):
-            findings.append(Finding("stop-at-wall", "info",
-                                    f"no wall within {stop.get('range', 3.5):g} m in any direction: stop at wall "
-                                    "was not tried"))
-        elif stop.get("touched"):
-            findings.append(Finding("stop-at-wall", "error",
-                                    f"driving toward the wall the robot touched {', '.join(stop['touched'])} "
-                                    f"before stopping", where=_contacts_text(stop),
-                                    fix="an obstacle below the LiDAR plane is in the way, or the wall is too "
-                                        "close to brake; clear the path or move the spawn"))
-        elif stop.get("distance") is None or abs(stop["distance"] - STOP_TARGET) > STOP_TOLERANCE:
-            ended = ("with no wall in range ahead" if stop.get("distance") is None else
-                     f"{stop['distance']:.2f} m from the wall")
-            findings.append(Finding("stop-at-wall", "warning",
-                                    f"stop at wall ended {ended} instead of {STOP_TARGET} m from it "
-                                    f"after {stop.get('time', 0):.1f} s",
-                                    fix="check the floor ahead of the spawn is flat and free"))
-    for name, message in numbers.get("failed", {}).items():
+    if numbers.stop is not None:
+        findings += _stop_findings(numbers.stop, metrics)
+    for name, message in numbers.failed.items():
         findings.append(Finding(name, "error", message))
     return Outcome(findings, metrics)
+
+
+def _off_the_floor(numbers: SimNumbers, floor: str) -> SimNumbers:
+    """``numbers`` without the touches of the floor slab the robot stands on."""
+    def clean(part):
+        if part is None:
+            return None
+        points = tuple(c for c in part.contact_points if c.shape != floor)
+        if hasattr(part, "touched"):
+            return replace(part, touched=tuple(t for t in part.touched if t != floor), contact_points=points)
+        return replace(part, contact_points=points)
+
+    return replace(numbers, settle=clean(numbers.settle), spin=clean(numbers.spin), stop=clean(numbers.stop))
+
+
+def _settle_findings(settle: Settled, ground: float, metrics: dict) -> list[Finding]:
+    metrics.update(settle_tilt_deg=settle.tilt_deg, settle_height_m=settle.z, settle_moved_m=settle.moved)
+    if settle.tilt_deg > TILT_LIMIT:
+        return [Finding("settle", "error", f"after {settle.time:.1f} s the robot is tipped {settle.tilt_deg:.0f}°",
+                        where=_contacts_text(settle.contact_points), fix="spawn it on flat, free floor")]
+    if abs(settle.z - ground) > GROUND_LIMIT:
+        fell = settle.z < ground
+        return [Finding(
+            "settle", "error",
+            f"after {settle.time:.1f} s the robot is {settle.z - ground:+.3f} m from the floor "
+            + ("(it fell through: there is no ground under it)" if fell else "(it rests on something)"),
+            where=_contacts_text(settle.contact_points),
+            fix="give the world a ground plane" if fell else "spawn it on free floor, clear of obstacles")]
+    return []
+
+
+def _stop_findings(stop: Stopped, metrics: dict) -> list[Finding]:
+    metrics.update(stop_distance_m=stop.distance, stop_touched=list(stop.touched), stop_time_s=stop.time,
+                   stop_target_m=STOP_TARGET, stop_heading_deg=stop.heading_deg)
+    if stop.no_wall:
+        return [Finding("stop-at-wall", "info",
+                        f"no wall within {stop.range:g} m in any direction: stop at wall was not tried")]
+    if stop.touched:
+        return [Finding("stop-at-wall", "error",
+                        f"driving toward the wall the robot touched {', '.join(stop.touched)} before stopping",
+                        where=_contacts_text(stop.contact_points),
+                        fix="an obstacle below the LiDAR plane is in the way, or the wall is too close to brake; "
+                            "clear the path or move the spawn")]
+    if stop.distance is None or abs(stop.distance - STOP_TARGET) > STOP_TOLERANCE:
+        ended = "with no wall in range ahead" if stop.distance is None else f"{stop.distance:.2f} m from the wall"
+        return [Finding("stop-at-wall", "warning",
+                        f"stop at wall ended {ended} instead of {STOP_TARGET} m from it after {stop.time or 0:.1f} s",
+                        fix="check the floor ahead of the spawn is flat and free")]
+    return []
 
 
 NO_HIT_SHARE = 0.5   # a warning when at least this share of the beams see nothing (else one info line)
@@ -354,27 +366,26 @@ NO_HIT_MEANING = ("a beam that hits nothing reads inf in Gazebo but 0 on the rea
                   "treat both as 'nothing seen', never 0 as a wall right ahead")
 
 
-def lidar_no_hit_finding(scan: dict, no_hit: str) -> Finding | None:
+def lidar_no_hit_finding(scan: Scanned, no_hit: str) -> Finding | None:
     """What beams that hit nothing mean for the student's code, said once: a warning when the beams straight ahead
     or at least :data:`NO_HIT_SHARE` of them see nothing from the spawn (what a stop-at-wall node reads first),
     a short info line when only some far corners are out of range (any room wider than 3.5 m has those), else
     None."""
-    missed, beams = scan["no_hit"], scan["beams"]
+    missed, beams = scan.no_hit, scan.beams
     if not missed:
         return None
     reads = "inf" if no_hit == "inf" else "0"
-    within = f"within {scan['range_max']:g} m"
+    within = f"within {scan.range_max:g} m"
     if missed == beams:
         what = f"all {beams} beams see nothing {within} and read {reads}"
     else:
         what = f"{missed} of {beams} beams see nothing {within} and read {reads}"
-    if scan.get("front_no_hit") or missed >= NO_HIT_SHARE * beams:
-        ahead = " (straight ahead too)" if scan.get("front_no_hit") and missed != beams else ""
+    if scan.front_no_hit or missed >= NO_HIT_SHARE * beams:
+        ahead = " (straight ahead too)" if scan.front_no_hit and missed != beams else ""
         return Finding("lidar", "warning", f"{what}{ahead}: {NO_HIT_MEANING}",
                        fix="handle both readings in code, or spawn the robot within 3.5 m of a wall ahead")
     return Finding("lidar", "info", f"{what}: only the farthest parts of the room are out of range")
 
 
-def _contacts_text(part: dict) -> str | None:
-    points = part.get("contact_points") or []
-    return "; ".join(f"{c['link']} touched {c['shape']} at t = {c['time']:.1f} s" for c in points) or None
+def _contacts_text(points) -> str | None:
+    return "; ".join(f"{c.link} touched {c.shape} at t = {c.time:.1f} s" for c in points) or None

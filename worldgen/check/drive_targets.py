@@ -11,9 +11,16 @@ With no spawn anywhere, :func:`default_spawn` is the deepest free point of the w
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import List, Optional, Tuple
+
+from ..core.errors import InputError, WorldgenError
+from ..sim.exercise import Exercise
+from ..sim.process import SimCrashed, SimError
+from .nospawn import default_spawns
+from .sources import load_scene, run_on_scene
+from .validate import Options, plan
 
 
 @dataclass(frozen=True)
@@ -33,8 +40,6 @@ class DriveTarget:
 
 def drive_targets(path: str | Path) -> List[DriveTarget]:
     """The targets of ``path`` in the order ``validate`` would check them (InputError when nothing can be)."""
-    from .validate import Options, plan
-
     targets: List[DriveTarget] = []
     for job in plan([path], Options()):
         errors = [f for f in job.findings if f.severity == "error" and f.check in ("input", "launch")]
@@ -55,39 +60,33 @@ def drive_targets(path: str | Path) -> List[DriveTarget]:
 def default_spawn(scene, robot: str) -> Tuple[Tuple[float, float, float], str]:
     """The spawn for a world with none given, and the sentence saying so: the largest closed room's deepest
     free point (see the module docstring)."""
-    from .nospawn import default_spawns
-
     first = default_spawns(scene, robot)[0]
     return first.spawn, first.source
 
 
-def drive_one(world: Path, kind: str, request: dict, model_paths, launch_pose=None, timeout: float = 300.0
+def drive_one(world: Path, kind: str, exercise: Exercise, model_paths=(), launch_pose=None, timeout: float = 300.0
               ) -> dict:
-    """Run the exercise ``request`` (``worldgen.sim.exercise.drive_exercise``'s keywords) in one world or spec. Spawn: ``--spawn``, else ``launch_pose`` ((x, y, yaw),
-    its source), else the spec's robot, else the deepest free point of the largest closed room."""
-    from .sources import load_scene, run_on_scene
-
+    """Run ``exercise`` (:func:`worldgen.sim.exercise.drive_exercise`, in a child process) in one world or spec.
+    Spawn: the exercise's (``--spawn``), else ``launch_pose`` ((x, y, yaw), its source), else the spec's robot,
+    else the deepest free point of the largest closed room."""
     scene, spec_robot = load_scene(world, "spec" if kind == "spec" else "world", model_paths)
-    request = {**request, "world": str(world), "spec_robot": spec_robot}
     note = None
-    if request["spawn"] is None and launch_pose is not None:
-        request["spawn"], note = list(launch_pose[0]), launch_pose[1]
-    elif request["spawn"] is None and spec_robot is None:
-        pose, note = default_spawn(scene, request["robot"] or "burger")
-        request["spawn"] = list(pose)
-    result = run_on_scene("worldgen.sim.exercise:drive_exercise", scene, request, timeout)
+    if exercise.spawn is None and launch_pose is not None:
+        exercise, note = replace(exercise, spawn=tuple(launch_pose[0])), launch_pose[1]
+    elif exercise.spawn is None and spec_robot is None:
+        pose, note = default_spawn(scene, exercise.robot or "burger")
+        exercise = replace(exercise, spawn=tuple(pose))
+    result = run_on_scene("worldgen.sim.exercise:drive_exercise", scene,
+                          {"world": str(world), "exercise": exercise.to_dict(), "spec_robot": spec_robot}, timeout)
     if note is not None:
         result["spawn_source"] = note
     return result
 
 
-def drive_all(path: str | Path, request: dict, model_paths, timeout: float = 300.0
+def drive_all(path: str | Path, exercise: Exercise, model_paths=(), timeout: float = 300.0
               ) -> List[Tuple[str, Optional[dict], Optional[str]]]:
     """:func:`drive_one` in every target of ``path``: (what to call it, the result, None) each, or (…, None, why it
     failed) for a target that cannot be driven in; InputError when ``path`` holds nothing to drive in."""
-    from ..core.errors import InputError, WorldgenError
-    from ..sim.process import SimCrashed, SimError
-
     targets = drive_targets(path)
     if not targets:
         raise InputError("holds no world, spec, launch file or package to drive in", path=path,
@@ -97,9 +96,9 @@ def drive_all(path: str | Path, request: dict, model_paths, timeout: float = 300
         failure, result = target.problem, None
         if failure is None:
             pose = (target.spawn, target.spawn_source) if target.spawn is not None else None
-            req = {**request, "robot": request["robot"] or target.robot}
+            asked = replace(exercise, robot=exercise.robot or target.robot)
             try:
-                result = drive_one(target.path, target.kind, req, model_paths, pose, timeout)
+                result = drive_one(target.path, target.kind, asked, model_paths, pose, timeout)
                 result["world"] = target.shown
             except (SimCrashed, SimError) as err:
                 failure = f"the simulation failed: {str(err).splitlines()[0]}"

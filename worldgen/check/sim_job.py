@@ -1,6 +1,6 @@
 """``worldgen validate``'s simulated checks as one job: spawn the robot in the scene, let it settle, take a
-360-beam scan, spin in place, then stop at the wall ahead; plain numbers back, which
-:func:`worldgen.check.checks.sim_findings` judges.
+360-beam scan, spin in place, then stop at the wall ahead; what it measured comes back as a
+:class:`~worldgen.check.sim_results.SimNumbers` record, which :func:`worldgen.check.checks.sim_findings` judges.
 
 :func:`simulate` is what the validating process starts in a child (``run_isolated(
 "worldgen.check.sim_job:simulate", kwargs)``). The parent hands over the scene it already read, pickled into
@@ -13,8 +13,10 @@ from __future__ import annotations
 import math
 import time
 
-from .checks import STOP_TARGET
 from ..core.scene import Scene
+from ..core.stoplaw import StopLaw
+from .checks import STOP_TARGET
+from .sim_results import Scanned, Settled, SimNumbers, Spun, Stopped, touches
 
 SETTLE_SECONDS = 1.0
 SPIN_OMEGA = 1.5            # rad/s: within both the burger's (2.84) and the waffle's (1.82) limits
@@ -26,20 +28,21 @@ FACE_TOLERANCE = math.radians(2)
 def simulate(scene_file: str, robot: str = "burger", spawn: list[float] = (0.0, 0.0, 0.0), no_hit: str = "inf",
              stage_file: str | None = None, urdf: str | None = None) -> dict:
     """The job in a child process: :func:`sim_numbers` on the scene pickled in ``scene_file`` (written by the
-    parent into its own temporary folder), with the robot's URDF text when the parent has processed it."""
-    return sim_numbers(Scene.load(scene_file), robot, spawn, no_hit, stage_file, urdf)
+    parent into its own temporary folder), with the robot's URDF text when the parent has processed it; the
+    record as JSON-able values (:meth:`SimNumbers.to_dict`)."""
+    return sim_numbers(Scene.load(scene_file), robot, spawn, no_hit, stage_file, urdf).to_dict()
 
 
 def sim_numbers(scene: Scene, robot: str = "burger", spawn=(0.0, 0.0, 0.0), no_hit: str = "inf",
-                stage_file: str | None = None, urdf: str | None = None) -> dict:
-    """Run the simulated checks on ``scene`` and return plain numbers (JSON-safe).
+                stage_file: str | None = None, urdf: str | None = None) -> SimNumbers:
+    """Run the simulated checks on ``scene`` and return what they measured.
 
     Spawns ``robot`` at ``spawn`` (x, y, yaw), lets it settle, takes a 360-beam scan, spins in place, then drives
     to :data:`~worldgen.check.checks.STOP_TARGET` from the nearest wall ahead (turning to face the nearest wall first
     when nothing is within range ahead). Each stage is written to ``stage_file`` before it starts, so that a
     crash can be reported as "while <stage>".
     """
-    from ..sim.behaviours import settle, spin, stop_at_wall
+    from ..sim.behaviours import settle, spin   # pybullet: only the child process needs it
     from ..sim.session import Session
 
     def stage(text: str) -> None:
@@ -49,63 +52,62 @@ def sim_numbers(scene: Scene, robot: str = "burger", spawn=(0.0, 0.0, 0.0), no_h
 
     started = time.perf_counter()
     stage("loading the world and the robot")
-    numbers: dict = {"ran": [], "failed": {}}
+    ran, failed, scanned, stopped = [], {}, None, None
     with Session(scene, robot, tuple(spawn), no_hit=no_hit, urdf=urdf) as session:
         stage("letting the robot settle")
         rest = settle(session, SETTLE_SECONDS)
-        numbers["ran"].append("settle")
-        numbers["settle"] = {"time": SETTLE_SECONDS, "z": rest.z, "moved": rest.drift,
-                             "tilt_deg": math.degrees(max(abs(rest.roll), abs(rest.pitch))),
-                             "contact_points": _touched_points(rest.contacts)}
-        numbers["ran"].append("lidar")
+        ran.append("settle")
+        settled = Settled(time=SETTLE_SECONDS, z=rest.z, moved=rest.drift,
+                          tilt_deg=math.degrees(max(abs(rest.roll), abs(rest.pitch))),
+                          contact_points=touches(rest.contacts))
+        ran.append("lidar")
         if session.lidar is None:
-            numbers["failed"]["lidar"] = "the robot has no LiDAR (no ray sensor and no base_scan link)"
+            failed["lidar"] = "the robot has no LiDAR (no ray sensor and no base_scan link)"
         else:
             stage("scanning with the LiDAR")
-            numbers["lidar"] = _scan_numbers(session.scan())
+            scanned = _scan_numbers(session.scan())
         stage("spinning in place")
         turn = spin(session, seconds=2 * math.pi / SPIN_OMEGA, omega=SPIN_OMEGA)
-        numbers["ran"].append("spin")
-        numbers["spin"] = {"drift": turn.max_drift, "turned": turn.turned, "touched": _touched(turn.contacts),
-                           "contact_points": _touched_points(turn.contacts)}
+        ran.append("spin")
+        spun = Spun(drift=turn.max_drift, turned=turn.turned, touched=_touched(turn.contacts),
+                    contact_points=touches(turn.contacts))
         if session.lidar is not None:
             stage("driving to the wall")
-            numbers["stop"] = _stop_at_wall(session, stop_at_wall)
-            numbers["ran"].append("stop-at-wall")
-        numbers["sim_seconds"] = session.t
-    numbers["wall_seconds"] = time.perf_counter() - started
+            stopped = _stop_at_wall(session)
+            ran.append("stop-at-wall")
+        sim_seconds = session.t
+    numbers = SimNumbers(ran=tuple(ran), failed=failed, settle=settled, lidar=scanned, spin=spun, stop=stopped,
+                         sim_seconds=sim_seconds, wall_seconds=time.perf_counter() - started)
     stage("done")
     return numbers
 
 
-def _scan_numbers(scan) -> dict:
-    from ..sim.lidar import front_distance
+def _scan_numbers(scan) -> Scanned:
+    from ..sim.lidar import front_distance   # pybullet: only the child process needs it
 
     true = scan.true_ranges
     hits = [(r, i) for i, r in enumerate(true) if math.isfinite(r)]
     misses = [i for i, r in enumerate(true) if not math.isfinite(r)]
     nearest = min(hits) if hits else None
-    return {"beams": len(true), "no_hit": len(misses), "range_max": scan.range_max,
-            "no_hit_reading": scan.ranges[misses[0]] if misses else None,
-            "no_hit_bearings_deg": [math.degrees(scan.angle_min + i * scan.angle_increment) for i in misses[:1]],
-            "nearest": nearest[0] if nearest else None,
-            "nearest_bearing_deg": math.degrees(scan.angle_min + nearest[1] * scan.angle_increment)
-            if nearest else None,
-            "farthest": max(hits)[0] if hits else None,
-            "front_no_hit": front_distance(scan, true=True) is None,
-            "ranges_sample": [scan.ranges[i] for i in range(0, len(scan.ranges), 90)]}
+    return Scanned(beams=len(true), no_hit=len(misses), range_max=scan.range_max,
+                   no_hit_reading=scan.ranges[misses[0]] if misses else None,
+                   no_hit_bearings_deg=tuple(math.degrees(scan.angle_min + i * scan.angle_increment)
+                                             for i in misses[:1]),
+                   nearest=nearest[0] if nearest else None,
+                   nearest_bearing_deg=math.degrees(scan.angle_min + nearest[1] * scan.angle_increment)
+                   if nearest else None,
+                   farthest=max(hits)[0] if hits else None,
+                   front_no_hit=front_distance(scan, true=True) is None,
+                   ranges_sample=tuple(scan.ranges[i] for i in range(0, len(scan.ranges), 90)))
 
 
-def _touched(contacts: list[dict]) -> list[str]:
-    return sorted({c["shape"] for c in contacts})
+def _touched(contacts: list[dict]) -> tuple[str, ...]:
+    return tuple(sorted({c["shape"] for c in contacts}))
 
 
-def _touched_points(contacts: list[dict]) -> list:
-    return [{"shape": c["shape"], "link": c["link"], "time": c["time"]} for c in contacts[:3]]
-
-
-def _stop_at_wall(session, stop_at_wall) -> dict:
+def _stop_at_wall(session) -> Stopped:
     """Face the nearest wall when nothing is in range straight ahead, then run the P controller to the target."""
+    from ..sim.behaviours import stop_at_wall   # pybullet: only the child process needs it
     from ..sim.lidar import front_distance
 
     scan = session.scan(noise=False)
@@ -114,21 +116,21 @@ def _stop_at_wall(session, stop_at_wall) -> dict:
     if ahead is None:
         hits = [(r, i) for i, r in enumerate(scan.true_ranges) if math.isfinite(r)]
         if not hits:
-            return {"no_wall": True, "range": scan.range_max, "distance": None, "touched": []}
+            return Stopped(no_wall=True, range=scan.range_max)
         _, i = min(hits)
         _face(session, scan.angle_min + i * scan.angle_increment)
         turned = True
         ahead = front_distance(session.scan(noise=False), true=True)
         if ahead is None:
-            return {"no_wall": True, "range": scan.range_max, "distance": None, "touched": []}
+            return Stopped(no_wall=True, range=scan.range_max)
     # long enough to cross the whole LiDAR range: what is ahead may change as the robot passes obstacles
     duration = (scan.range_max - STOP_TARGET) / STOP_SPEED + 10.0
     start_t = session.t
-    run = stop_at_wall(session, target=STOP_TARGET, kp=STOP_KP, duration=duration, max_speed=STOP_SPEED)
-    return {"distance": run.final_distance, "touched": _touched(run.contacts),
-            "contact_points": _touched_points(run.contacts), "time": session.t - start_t,
-            "start_distance": ahead, "turned_to_face": turned, "overshoot": run.overshoot,
-            "heading_deg": math.degrees(session.odometry().yaw)}
+    run = stop_at_wall(session, StopLaw(target=STOP_TARGET, kp=STOP_KP, max_speed=STOP_SPEED), duration=duration)
+    return Stopped(distance=run.final_distance, touched=_touched(run.contacts),
+                   contact_points=touches(run.contacts), time=session.t - start_t, start_distance=ahead,
+                   turned_to_face=turned, overshoot=run.overshoot,
+                   heading_deg=math.degrees(session.odometry().yaw))
 
 
 def _face(session, bearing: float) -> None:

@@ -11,7 +11,7 @@ from pathlib import Path
 import click
 
 from ..core import stoplaw
-from ..sim.exercise import BEHAVIOURS
+from ..sim.exercise import BEHAVIOURS, Exercise, Gains
 from ..core.errors import EXIT_FAILED, EXIT_OK
 
 SIM_TIMEOUT = 300.0   # s of wall time for all runs together
@@ -101,18 +101,18 @@ def drive(world, behaviour, robot, spawn, target, kp, ki, kd, duration, max_spee
 
         require_three()
     check_free(outputs, force)
-    request = {
-        "behaviour": behaviour, "robot": _robot_arg(robot), "spawn": list(parse_spawn(spawn)) if spawn is not None
-        else None, "gains": gain_sets(kp, ki, kd), "target": target, "duration": duration, "max_speed": max_speed,
-        "omega": omega, "rate": float(rate), "front_angle": front_angle, "no_hit": lidar_no_hit, "tolerance": tolerance,
-        "stop_band": stop_band, "record_scans": html is not None}
+    exercise = Exercise(
+        behaviour=behaviour, robot=_robot_arg(robot), spawn=tuple(parse_spawn(spawn)) if spawn is not None else None,
+        gains=gain_sets(kp, ki, kd), target=target, duration=duration, max_speed=max_speed, omega=omega,
+        rate=float(rate), front_angle=front_angle, no_hit=lidar_no_hit, tolerance=tolerance, stop_band=stop_band,
+        record_scans=html is not None)
     if kind in ("folder", "package", "launch"):   # every world a launch file starts, with its spawn
         if outputs:
             raise InputError("--plot, --csv and --html take a single world", path=world,
                              hint="give one world or spec file to plot, or leave out --plot/--csv/--html")
-        sys.exit(drive_many(world, request, model_paths, fmt))
+        sys.exit(drive_many(world, exercise, model_paths, fmt))
     try:
-        result = drive_one(world, kind, request, model_paths, timeout=SIM_TIMEOUT)
+        result = drive_one(world, kind, exercise, model_paths, timeout=SIM_TIMEOUT)
     except (SimCrashed, SimError) as err:
         raise WorldgenError(f"the simulation failed: {str(err).splitlines()[0]}", path=world,
                             hint="'worldgen validate' says more about the world; please report it to the worldgen "
@@ -135,17 +135,17 @@ def drive(world, behaviour, robot, spawn, target, kp, ki, kd, duration, max_spee
     sys.exit(EXIT_OK if all(run["ok"] for run in result["runs"]) else EXIT_FAILED)
 
 
-def drive_many(path: Path, request: dict, model_paths, fmt: str) -> int:
+def drive_many(path: Path, exercise: Exercise, model_paths, fmt: str) -> int:
     """Drive in every world ``path`` holds (:func:`worldgen.check.drive_targets.drive_all`); print one report per
     world (JSON: ``{"ok", "worlds": [...]}``) and return the exit code: 0 when every run passed, 1 otherwise (a
     world that cannot be driven in is a failure, the rest still run)."""
     from ..check.drive_targets import drive_all
 
     reports, texts = [], []
-    for shown, result, failure in drive_all(path, request, model_paths, SIM_TIMEOUT):
+    for shown, result, failure in drive_all(path, exercise, model_paths, SIM_TIMEOUT):
         if failure is not None:
             reports.append({"world": shown, "ok": False, "error": failure})
-            texts.append(f"{request['behaviour']} in {shown}: FAILED: {failure}")
+            texts.append(f"{exercise.behaviour} in {shown}: FAILED: {failure}")
             continue
         reports.append(_finite(_summary(result)))
         texts.append(text_report(result))
@@ -168,7 +168,7 @@ def _robot_arg(robot: str | None) -> str | None:
     return robot if robot in MODELS else str(path)
 
 
-def gain_sets(kp: tuple, ki: tuple, kd: tuple) -> list[dict]:
+def gain_sets(kp: tuple, ki: tuple, kd: tuple) -> tuple[Gains, ...]:
     """Zip repeated --kp/--ki/--kd into gain sets; a gain given once (or not at all) applies to every run."""
     from ..core.errors import InputError
 
@@ -179,7 +179,7 @@ def gain_sets(kp: tuple, ki: tuple, kd: tuple) -> list[dict]:
             raise InputError(f"--{name} is given {len(values)} times for {runs} runs",
                              hint=f"give --{name} once (used for every run) or once per run")
         columns[name] = list(values) * runs if len(values) == 1 else list(values) or [default] * runs
-    return [{name: columns[name][i] for name in ("kp", "ki", "kd")} for i in range(runs)]
+    return tuple(Gains(**{name: columns[name][i] for name in ("kp", "ki", "kd")}) for i in range(runs))
 
 
 def _summary(result: dict) -> dict:

@@ -163,25 +163,23 @@ def scaffold_command(name: str, dependencies: tuple[str, ...], meta: bool, sys_d
     worlds/ and scripts/ folders that install, and optionally a world and its launch file. With --ros
     humble|jazzy an ament_python package as 'ros2 pkg create --build-type ament_python' makes it, with
     launch/ and worlds/ (jazzy: params/) that setup.py installs."""
-    from ..packages.catkin import create_package, package_request
+    from ..packages.catkin import PackageArgs, create_package, package_request
 
+    args = PackageArgs(name, tuple(dependencies), sys_deps=tuple(sys_deps), boost_comps=tuple(boost_comps),
+                       version=version, description=description, licenses=tuple(licenses), authors=tuple(authors),
+                       maintainers=tuple(maintainers), meta=meta, rosdistro=rosdistro)
     if ros != "noetic":
         from ..packages.ament import ament_request, create_ament_package
 
-        req = ament_request(name, dependencies, sys_deps=sys_deps, boost_comps=boost_comps, version=version,
-                            description=description, licenses=licenses, authors=authors,
-                            maintainers=maintainers, meta=meta)
-        target = create_ament_package(parent, req, ros, world_spec=world_spec, cmd_vel=cmd_vel, force=force)
+        target = create_ament_package(parent, ament_request(args), ros, world_spec=world_spec, cmd_vel=cmd_vel,
+                                      force=force)
         click.echo(f"wrote {target}")
         return
     if cmd_vel == "stamped":
         from ..launch.targets import cmd_vel_type
 
         cmd_vel_type(ros, cmd_vel)
-    req = package_request(name, dependencies, sys_deps=sys_deps, boost_comps=boost_comps, version=version,
-                          description=description, licenses=licenses, authors=authors, maintainers=maintainers,
-                          meta=meta, rosdistro=rosdistro)
-    target = create_package(parent, req, world_spec=world_spec, force=force)
+    target = create_package(parent, package_request(args), world_spec=world_spec, force=force)
     click.echo(f"wrote {target}")
 
 

@@ -28,7 +28,7 @@ from typing import Mapping
 from ..core.errors import InputError
 from ..core.resources import render_template
 from ..launch.writer_py import check_ros2, world_package_files
-from .catkin import PackageFiles, PackageRequest, package_request, world_from_spec
+from .catkin import PackageArgs, PackageFiles, PackageRequest, package_request, world_from_spec
 from ..launch.targets import world_text
 
 TEST_DEPENDS = ("ament_copyright", "ament_flake8", "ament_pep257", "python3-pytest")
@@ -44,30 +44,29 @@ DEFAULT_LICENSE = "TODO: License declaration"
 ROS1_ONLY = {"rospy": "rclpy", "roscpp": "rclcpp", "catkin": None}
 
 
-def ament_request(name: str, dependencies=(), *, sys_deps=(), boost_comps=(), version: str | None = None,
-                  description: str | None = None, licenses=(), authors=(), maintainers=(),
-                  meta: bool = False) -> PackageRequest:
+def ament_request(args: PackageArgs) -> PackageRequest:
     """``worldgen scaffold --ros humble|jazzy``'s arguments → a checked :class:`PackageRequest` (its
-    ``catkin_deps`` are the ``<depend>`` names). Raises InputError for what ros2 pkg create refuses (the name
-    ``test``), for boost components and ``--meta``, and for ROS 1 packages among the dependencies."""
-    if name == "test":
+    ``catkin_deps`` are the ``<depend>`` names; ``rosdistro`` is not read). Raises InputError for what ros2 pkg
+    create refuses (the name ``test``), for boost components and ``--meta``, and for ROS 1 packages among the
+    dependencies."""
+    if args.name == "test":
         raise InputError("an ament_python package cannot be named 'test' (its tests are in test/)",
                          hint="choose another name")
-    if meta:
+    if args.meta:
         raise InputError("ROS 2 has no catkin metapackages", hint="leave out --meta")
-    if boost_comps:
+    if args.boost_comps:
         raise InputError("-b/--boost-comps is for catkin (CMake) packages; this is an ament_python package",
                          hint="leave out -b")
-    deps = list(dependencies) + list(sys_deps)
+    deps = tuple(args.dependencies) + tuple(args.sys_deps)
     for dep in deps:
         if dep in ROS1_ONLY:
             instead = ROS1_ONLY[dep]
             raise InputError(f"{dep} is ROS 1; a ROS 2 package does not depend on it",
                              hint=f"depend on {instead} instead" if instead else f"leave out {dep}")
-    req = package_request(name, deps, version=version,
-                          description=DEFAULT_DESCRIPTION if description is None else description,
-                          licenses=list(licenses) or [DEFAULT_LICENSE], authors=authors, maintainers=maintainers)
-    return req
+    return package_request(PackageArgs(
+        args.name, deps, version=args.version,
+        description=DEFAULT_DESCRIPTION if args.description is None else args.description,
+        licenses=tuple(args.licenses) or (DEFAULT_LICENSE,), authors=args.authors, maintainers=args.maintainers))
 
 
 def package_xml(req: PackageRequest, launch_depends=()) -> str:

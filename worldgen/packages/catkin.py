@@ -1,6 +1,6 @@
 """catkin packages: ``catkin_create_pkg``-compatible scaffolding for the class.
 
-:func:`package_request` takes catkin_create_pkg's arguments and gives them the same meaning (defaults, sorting,
+:func:`package_request` takes catkin_create_pkg's arguments (:class:`PackageArgs`) and gives them the same meaning (defaults, sorting,
 the three-tag expansion of each dependency, ``python-*`` system deps as exec_depend only, boost, ``--meta``);
 :func:`package_files` renders package.xml (format 2) and a CMakeLists.txt in catkin's skeleton shape, plus the
 folders a class package needs (``launch/``, ``worlds/``, ``scripts/``, and ``src/``/``include/NAME`` as catkin
@@ -22,7 +22,7 @@ import getpass
 import re
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Iterable, Mapping, Sequence
+from typing import Iterable, Mapping, Optional, Sequence, Tuple
 
 from ..core.errors import InputError
 from ..launch.writer_xml import launch_xml
@@ -92,12 +92,27 @@ def _person(text: str, maintainer: bool) -> Person:
     return Person(name, email)
 
 
-def package_request(name: str, dependencies: Iterable[str] = (), *, sys_deps: Iterable[str] = (),
-                    boost_comps: Iterable[str] = (), version: str | None = None, description: str | None = None,
-                    licenses: Iterable[str] = (), authors: Iterable[str] = (), maintainers: Iterable[str] = (),
-                    meta: bool = False, rosdistro: str | None = None) -> PackageRequest:
+@dataclass(frozen=True)
+class PackageArgs:
+    """catkin_create_pkg's arguments (and ``worldgen scaffold``'s) as given, before any default or check."""
+
+    name: str
+    dependencies: Tuple[str, ...] = ()
+    sys_deps: Tuple[str, ...] = ()
+    boost_comps: Tuple[str, ...] = ()
+    version: Optional[str] = None
+    description: Optional[str] = None
+    licenses: Tuple[str, ...] = ()
+    authors: Tuple[str, ...] = ()
+    maintainers: Tuple[str, ...] = ()
+    meta: bool = False
+    rosdistro: Optional[str] = None
+
+
+def package_request(args: PackageArgs) -> PackageRequest:
     """catkin_create_pkg's arguments → a checked :class:`PackageRequest`. Raises InputError for an invalid
     package name, version, email, dependency name or a ROS 2 distro."""
+    name, version, description, rosdistro = args.name, args.version, args.description, args.rosdistro
     validate_package_name(name)
     if rosdistro and rosdistro.lower() in ROS2_DISTROS:
         raise InputError(f"{rosdistro} is a ROS 2 distro; without --ros worldgen scaffolds catkin (ROS 1) packages",
@@ -109,9 +124,9 @@ def package_request(name: str, dependencies: Iterable[str] = (), *, sys_deps: It
     description = (description if description is not None else f"The {name} package").strip()
     if not description:
         raise InputError("empty package description", hint="give one with -D, or leave -D out")
-    deps = sorted({d for d in dependencies if d.lower() != "catkin"})
-    system = list(dict.fromkeys(sys_deps))
-    boost = list(dict.fromkeys(boost_comps))
+    deps = sorted({d for d in args.dependencies if d.lower() != "catkin"})
+    system = list(dict.fromkeys(args.sys_deps))
+    boost = list(dict.fromkeys(args.boost_comps))
     if boost and "boost" not in system:
         system.append("boost")
     for comp in boost:
@@ -123,15 +138,15 @@ def package_request(name: str, dependencies: Iterable[str] = (), *, sys_deps: It
             raise InputError(f"invalid dependency name {dep!r}", hint="a dependency is a package or rosdep key")
         if dep == name:
             raise InputError(f"the package {name} cannot depend on itself", hint="remove it from the dependencies")
-    license_list = sorted(set(licenses)) or ["TODO"]
+    license_list = sorted(set(args.licenses)) or ["TODO"]
     if any(not lic.strip() for lic in license_list):
         raise InputError("empty license name", hint="give -l a license name such as BSD or MIT")
-    maintainer_names = sorted(maintainers) or [getpass.getuser()]
+    maintainer_names = sorted(args.maintainers) or [getpass.getuser()]
     return PackageRequest(
         name=name, catkin_deps=tuple(deps), system_deps=tuple(system), boost_comps=tuple(boost),
         version=version, description=description, licenses=tuple(license_list),
         maintainers=tuple(_person(m, True) for m in maintainer_names),
-        authors=tuple(_person(a, False) for a in sorted(authors)), meta=meta)
+        authors=tuple(_person(a, False) for a in sorted(args.authors)), meta=args.meta)
 
 
 def dependency_tags(req: PackageRequest) -> list[tuple[str, str]]:

@@ -11,8 +11,9 @@ from __future__ import annotations
 
 import os
 import re
+from dataclasses import dataclass
 from pathlib import Path
-from typing import Mapping, Sequence
+from typing import Mapping, Optional, Sequence, Set
 
 from ..core.errors import WorldFileError
 from ..core.findings import Finding
@@ -80,8 +81,9 @@ def check_package(pkg_dir: str | Path, *, ros_package_path: Sequence[str | Path]
                 add("script-executable", "error", "Python script has no #! line", script,
                     "start it with #!/usr/bin/env python3")
     used: set[str] = set()
+    package = _Package(name, pkg_dir, kind, executables)
     for launch in package_launch_files(pkg_dir):
-        _check_launch(launch, name, pkg_dir, used, add, ros_package_path, environ, kind, executables)
+        _check_launch(launch, package, used, add, ros_package_path, environ)
     if depends is not None:
         for dep in sorted(used - depends - {name}):
             add("package-depends", "warning", f"launch files use the package {dep} but package.xml does not "
@@ -125,8 +127,19 @@ def _check_cmake(cmake: Path, name: str, pkg_dir: Path, add) -> None:
                 cmake, f"add install(DIRECTORY {folder} DESTINATION ${{CATKIN_PACKAGE_SHARE_DESTINATION}})")
 
 
-def _check_launch(launch: Path, name: str, pkg_dir: Path, used: set[str], add, ros_package_path, environ,
-                  kind: str = "catkin", executables: set[str] | None = None) -> None:
+@dataclass(frozen=True)
+class _Package:
+    """The package whose launch files are checked: its name, folder, build type and (ament) the executables
+    its build files install (None: not known)."""
+
+    name: str
+    folder: Path
+    kind: str = "catkin"
+    executables: Optional[Set[str]] = None
+
+
+def _check_launch(launch: Path, package: _Package, used: set[str], add, ros_package_path, environ) -> None:
+    name, pkg_dir, kind, executables = package.name, package.folder, package.kind, package.executables
     try:
         info = read_launch(launch, ros_package_path=ros_package_path, environ=environ or {})
     except WorldFileError as err:

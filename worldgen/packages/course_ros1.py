@@ -25,7 +25,7 @@ from ..launch.writer_xml import default_launch_name, launch_xml, parse_node
 from ..core import stoplaw
 from ..core.numbers import format_number
 from ..core.resources import render_template
-from .catkin import PackageFiles, PackageRequest, package_files, package_request, world_from_spec
+from .catkin import PackageArgs, PackageFiles, PackageRequest, package_files, package_request, world_from_spec
 
 REPOSITORY = "intro_robo"
 WORLD_PACKAGE = "class_meeting_02_custom_gazebo_world"
@@ -45,8 +45,8 @@ STOP = {"target_distance": stoplaw.TARGET, "kp": stoplaw.KP, "max_speed": stopla
 
 
 def _request(name: str, description: str, maintainer: str | None, exec_only=()) -> PackageRequest:
-    req = package_request(name, DEPENDENCIES, version=VERSION, description=description, licenses=[LICENSE],
-                          maintainers=[maintainer] if maintainer else ())
+    req = package_request(PackageArgs(name, DEPENDENCIES, version=VERSION, description=description,
+                                      licenses=(LICENSE,), maintainers=(maintainer,) if maintainer else ()))
     return replace(req, exec_only=tuple(exec_only))
 
 
@@ -75,9 +75,9 @@ def course_files(maintainer: str | None = None) -> PackageFiles:
     stop = lab("lab_a_stop_at_wall", "stop_at_wall.py", STOP,
                "Lab A: drive a TurtleBot3 to a wall and stop there, with proportional control on the LiDAR")
     line = _line_lab(maintainer)
-    meta_req = package_request(REPOSITORY, [], version=VERSION, licenses=[LICENSE], meta=True,
-                               description="The intro robotics class: its labs and Gazebo worlds",
-                               maintainers=[maintainer] if maintainer else ())
+    meta_req = package_request(PackageArgs(REPOSITORY, version=VERSION, licenses=(LICENSE,), meta=True,
+                                           description="The intro robotics class: its labs and Gazebo worlds",
+                                           maintainers=(maintainer,) if maintainer else ()))
     meta = package_files(replace(meta_req, exec_only=("lab_a_spin_circles", "lab_a_stop_at_wall", LINE_PACKAGE,
                                                       WORLD_PACKAGE)))
 

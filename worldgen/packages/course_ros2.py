@@ -25,7 +25,7 @@ from .ament import ament_package_files, ament_request, spec_world_files
 from .course_ros1 import LICENSE, REPOSITORY, SPIN, STOP, VERSION, WORLD_PACKAGE
 from ..launch.writer_xml import parse_node
 from ..launch.writer_py import launch_py
-from .catkin import PackageFiles
+from .catkin import PackageArgs, PackageFiles
 from ..launch.targets import cmd_vel_type
 
 DEPENDENCIES = ("rclpy", "std_msgs", "geometry_msgs", "sensor_msgs")
@@ -38,8 +38,8 @@ def course_ros2_files(ros: str, cmd_vel: str | None = None, maintainer: str | No
     stamped = cmd_vel_type(ros, cmd_vel) == "stamped"
 
     def request(name: str, description: str, exec_only=()):
-        req = ament_request(name, DEPENDENCIES, version=VERSION, description=description, licenses=[LICENSE],
-                            maintainers=[maintainer] if maintainer else ())
+        req = ament_request(PackageArgs(name, DEPENDENCIES, version=VERSION, description=description,
+                                        licenses=(LICENSE,), maintainers=(maintainer,) if maintainer else ()))
         return replace(req, exec_only=tuple(exec_only))
 
     grouped, world_file, spawn = spec_world_files(examples_dir() / "enclosed_room.yaml", WORLD_PACKAGE, ros,

@@ -6,7 +6,7 @@ JSON) with the numbers a check or a student looks at.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 from ..core import stoplaw
 from .lidar import front_distance, scan_row
@@ -127,14 +127,13 @@ class StopAtWallResult:
         return {**self.__dict__, "ok": self.ok}
 
 
-def stop_at_wall(session: Session, target: float = stoplaw.TARGET, kp: float = stoplaw.KP, ki: float = 0.0,
-                 kd: float = 0.0, duration: float = 15.0, max_speed: float = stoplaw.MAX_SPEED, rate: float = 5.0,
+def stop_at_wall(session: Session, law: stoplaw.StopLaw | None = None, duration: float = 15.0, rate: float = 5.0,
                  half_angle: float = math.radians(stoplaw.FRONT_ANGLE), band: float = 0.02,
-                 tolerance: float = 0.05, stop_band: float = stoplaw.STOP_BAND, record_scans: bool = False
-                 ) -> StopAtWallResult:
-    """Drive toward whatever is ahead and stop ``target`` m from it, exactly as the generated ``stop_at_wall.py``
-    node does (:class:`worldgen.core.stoplaw.StopLaw`): at ``rate`` Hz (the LiDAR's 5 Hz, or 30) read the front
-    distance (nearest beam within ±``half_angle``; None when nothing is seen there) and command
+                 tolerance: float = 0.05, record_scans: bool = False) -> StopAtWallResult:
+    """Drive toward whatever is ahead and stop ``law.target`` m from it, exactly as the generated
+    ``stop_at_wall.py`` node does: ``law`` (:class:`worldgen.core.stoplaw.StopLaw`, its parameters; a fresh copy
+    keeps the memory, default the class's law) at ``rate`` Hz (the LiDAR's 5 Hz, or 30) reads the front distance
+    (nearest beam within ±``half_angle``; None when nothing is seen there) and commands
     ``v = clamp(kp·e + ki·∫e dt + kd·de/dt, 0, max_speed)`` with ``e = front − target``; nothing seen: full
     speed; once within ``stop_band`` of the target: stop and hold, so LiDAR noise cannot start it again. It never
     reverses. ``band`` is the settling-time band around the final distance, ``tolerance`` how close to the
@@ -154,7 +153,7 @@ def stop_at_wall(session: Session, target: float = stoplaw.TARGET, kp: float = s
     every = _scan_every(rate) if record_scans else 0
     if every:
         series["scan"] = []
-    law = stoplaw.StopLaw(target=target, kp=kp, ki=ki, kd=kd, max_speed=max_speed, stop_band=stop_band)
+    law = replace(law or stoplaw.StopLaw(), holding=False, integral=0.0, last_error=None)
     stop_time = None
     for step in range(max(1, round(duration / period))):
         scan = session.scan()
@@ -186,12 +185,13 @@ def stop_at_wall(session: Session, target: float = stoplaw.TARGET, kp: float = s
     trues = [d for d in series["true"] if d is not None]
     nearest = min(trues) if trues else None
     last_second = series["v"][-(round(rate) + 1):]
+    target = law.target
     return StopAtWallResult(
-        target=target, kp=kp, ki=ki, kd=kd, final_distance=final, min_distance=nearest,
+        target=target, kp=law.kp, ki=law.ki, kd=law.kd, final_distance=final, min_distance=nearest,
         overshoot=max(0.0, target - nearest) if nearest is not None else 0.0,
         steady_state_error=final - target if final is not None else None,
         settling_time=_settling_time(series["t"], series["true"], final, band) if final is not None else None,
-        band=band, stop_band=stop_band, stop_time=stop_time,
+        band=band, stop_band=law.stop_band, stop_time=stop_time,
         stopped=law.holding and all(abs(v) < STOPPED_SPEED for v in last_second),
         within_tolerance=final is not None and abs(final - target) <= tolerance, tolerance=tolerance,
         contacts=session.touches.to_list(), series=series, start_t=start_t)

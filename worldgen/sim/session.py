@@ -35,30 +35,34 @@ DEFAULT_SOLVER_ITERATIONS = 10
 
 class Session:
     """Robots in one scene. ``spawn`` is (x, y) or (x, y, yaw) of the first robot's base frame, on the ground;
-    :meth:`add_robot` adds more."""
+    :meth:`add_robot` adds more. ``seed`` seeds the LiDAR's noise (None: no noise, the exact ranges quantised);
+    ``no_hit`` is what a beam that hits nothing reads ("inf" as Gazebo, "zero" as the real LDS-01 driver).
+    The physics' step and solver iterations are the class's (:data:`DEFAULT_TIME_STEP`); a world always gets
+    Gazebo's ground plane."""
+
+    time_step: float = DEFAULT_TIME_STEP
+    solver_iterations: int = DEFAULT_SOLVER_ITERATIONS
 
     def __init__(self, scene: Scene | None = None, robot: str | Path = "burger", spawn=(0.0, 0.0, 0.0), *,
-                 mappings: dict[str, str] | None = None, time_step: float = DEFAULT_TIME_STEP,
-                 solver_iterations: int = DEFAULT_SOLVER_ITERATIONS, no_hit: str = "inf", noise: bool = True,
-                 seed: int = 0, add_ground: bool = True, urdf: str | None = None, name: str = "turtlebot3"):
-        self.time_step = time_step
+                 mappings: dict[str, str] | None = None, no_hit: str = "inf", seed: int | None = 0,
+                 urdf: str | None = None, name: str = "turtlebot3"):
         self.no_hit = no_hit
-        self.rng = np.random.default_rng(seed) if noise else None
+        self.rng = np.random.default_rng(seed) if seed is not None else None
         self._steps = 0
         self.robots: list[Robot] = []
         self.client = pb.connect(pb.DIRECT)
         try:
             pb.setGravity(0, 0, GRAVITY, physicsClientId=self.client)
-            pb.setPhysicsEngineParameter(fixedTimeStep=time_step, numSolverIterations=solver_iterations,
+            pb.setPhysicsEngineParameter(fixedTimeStep=self.time_step, numSolverIterations=self.solver_iterations,
                                          numSubSteps=0, physicsClientId=self.client)
             scene = scene or Scene(source=None)
             self.scene = scene
             self.movers: dict[int, Shape] = {}
             self._camera_scene = None
-            self.bodies: SceneBodies = load_scene(self.client, scene, add_ground=add_ground)
+            self.bodies: SceneBodies = load_scene(self.client, scene)
             self.models = WorldModels(self.client, self.bodies, scene)
             self.add_robot(robot, spawn, name=name, mappings=mappings, urdf=urdf)
-            self._update_every = max(1, round(1.0 / (self.profile.drive.update_rate * time_step)))
+            self._update_every = max(1, round(1.0 / (self.profile.drive.update_rate * self.time_step)))
         except BaseException:
             self.close()
             raise

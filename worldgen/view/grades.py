@@ -14,6 +14,7 @@ from pathlib import Path
 from typing import Callable, Sequence
 
 from ..check.report import Result
+from .page import Panel, render_page, replay_page, world_source
 
 INDEX = "index.html"
 PAGES = "pages"
@@ -109,7 +110,6 @@ def validate_page(result: Result, model_paths=()) -> bytes | None:
 
     from ..core.errors import WorldgenError
     from ..spec.model import ROBOT_MODELS
-    from .page import render_page
     from .scene_data import read_source, world_data
 
     path = Path(result.path)
@@ -122,16 +122,15 @@ def validate_page(result: Result, model_paths=()) -> bytes | None:
     known = result.robot in ROBOT_MODELS or Path(result.robot).is_file()   # a model, or --robot FILE
     source = dataclasses.replace(source, spawn=result.spawn or source.spawn,
                                  robot=result.robot if known else source.robot)
-    return render_page(world_data(source), title=result.name, subtitle=source.subtitle, back=BACK, **panel(result))
+    return render_page(world_data(source), Panel(result.name, source.subtitle, back=BACK, **panel(result)))
 
 
 def run_page(result: Result, world, trace: dict, title: str | None = None, back: str | None = None) -> bytes:
     """A graded run's page: the world it ran in (``world``: :class:`worldgen.bridge.world.World`, or anything with
     its ``path``, ``scene``, ``spawn`` and ``robot``), the robot replayed along its trace, the verdict and
     findings; ``back``: a link to the index (:data:`BACK` in a report folder)."""
-    from .page import replay_page, world_source
     from .replay import run_replay
 
     source = world_source(world.path, world.scene, world.spawn, world.robot)
-    return replay_page(source, run_replay(trace), title=title or result.name,
-                       subtitle=f"in {Path(str(world.path)).name}", back=back, **panel(result))
+    return replay_page(source, run_replay(trace), Panel(title or result.name, f"in {Path(str(world.path)).name}",
+                                                        back=back, **panel(result)))

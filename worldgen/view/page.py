@@ -11,8 +11,9 @@ from __future__ import annotations
 import json
 import math
 import re
+from dataclasses import dataclass
 from pathlib import Path
-from typing import Sequence
+from typing import Optional, Sequence, Tuple
 
 from ..core.findings import Finding
 
@@ -71,11 +72,22 @@ def finding_items(findings: Sequence[Finding]) -> list[dict]:
     return out
 
 
-def render_page(data: dict, *, title: str, subtitle: str = "", findings: Sequence[Finding] = (),
-                verdict: str | None = None, verdict_text: str = "", metrics: Sequence[tuple[str, str]] = (),
-                back: str | None = None) -> bytes:
-    """The HTML page for ``data`` (a world's, with ``replay`` for a run), the findings and metrics beside it;
-    ``back``: a relative link to the class's index (a page of a ``--html DIR`` report)."""
+@dataclass(frozen=True)
+class Panel:
+    """What a page says beside the world: its title, the verdict, metrics and findings; ``back``: a relative
+    link to the class's index (a page of a ``--html DIR`` report)."""
+
+    title: str
+    subtitle: str = ""
+    findings: Sequence[Finding] = ()
+    verdict: Optional[str] = None
+    verdict_text: str = ""
+    metrics: Sequence[Tuple[str, str]] = ()
+    back: Optional[str] = None
+
+
+def render_page(data: dict, panel: Panel) -> bytes:
+    """The HTML page for ``data`` (a world's, with ``replay`` for a run), ``panel`` beside it."""
     from ..core.resources import render_template
     from .vendor import THREE_VERSION, modules
 
@@ -86,14 +98,14 @@ def render_page(data: dict, *, title: str, subtitle: str = "", findings: Sequenc
     code = [(name, Markup(_script_text(name, libraries[name]))) for name in LIBRARIES]
     replay = data.get("replay")
     html = render_template(
-        "view/page.html.j2", title=title, subtitle=subtitle, css=Markup(_template_text("page.css")),
+        "view/page.html.j2", title=panel.title, subtitle=panel.subtitle, css=Markup(_template_text("page.css")),
         data_json=Markup(data_json(data)), libraries=code,
         app=Markup(_script_text("page.js", _template_text("page.js"))),
         boot=Markup(boot), boot_hash=_csp_hash(f"\n{boot}\n"), three_version=THREE_VERSION,
         three_license=Markup(_script_text("LICENSE", libraries["LICENSE"])), replay=replay is not None,
         replay_duration=(replay["t"][-1] if replay and replay["t"] else 0), rays="rays" in data or replay is not None,
-        findings=finding_items(findings), verdict=verdict, verdict_text=verdict_text, metrics=list(metrics),
-        back=back)
+        findings=finding_items(panel.findings), verdict=panel.verdict, verdict_text=panel.verdict_text,
+        metrics=list(panel.metrics), back=panel.back)
     return html.encode("utf-8")
 
 
@@ -117,8 +129,8 @@ def world_page(path: str | Path, *, spawn: tuple[float, float, float] | None = N
             raise InputError("--lidar needs a spawn pose", hint="give --spawn X,Y[,YAW] or a robot: in the spec")
         rays = scan_rays(source, model_paths)
     data = world_data(source, rays)
-    return render_page(data, title=source.title, subtitle=source.subtitle, findings=_scene_findings(source.scene),
-                       metrics=world_facts(data))
+    return render_page(data, Panel(source.title, source.subtitle, findings=_scene_findings(source.scene),
+                                   metrics=world_facts(data)))
 
 
 def scan_rays(source, model_paths=(), timeout: float = 120.0) -> list:
@@ -172,19 +184,16 @@ def world_source(path: str | Path, scene, spawn=None, robot: str = "burger"):
     return dataclasses.replace(source, spawn=tuple(spawn) if spawn is not None else source.spawn, robot=robot)
 
 
-def replay_page(source, replay: dict, *, title: str, subtitle: str = "", findings: Sequence[Finding] = (),
-                verdict: str | None = None, verdict_text: str = "", metrics: Sequence[tuple[str, str]] = (),
-                back: str | None = None) -> bytes:
+def replay_page(source, replay: dict, panel: Panel) -> bytes:
     """The page of a run: the world of ``source`` (:func:`world_source`), the robot replayed along ``replay``
-    (:mod:`.replay`), the verdict, metrics and findings beside it."""
+    (:mod:`.replay`), ``panel`` (the verdict, metrics and findings) beside it."""
     from .scene_data import world_data
 
     data = world_data(source)
     data["replay"] = replay
     data["robot"]["spawn"] = [replay["x"][0], replay["y"][0], replay["yaw"][0]] if replay["t"] else \
         data["robot"]["spawn"]
-    return render_page(data, title=title, subtitle=subtitle, findings=findings, verdict=verdict,
-                       verdict_text=verdict_text, metrics=metrics, back=back)
+    return render_page(data, panel)
 
 
 def drive_page(world: str | Path, result: dict, model_paths: Sequence[str | Path] = (),
@@ -211,6 +220,6 @@ def drive_page(world: str | Path, result: dict, model_paths: Sequence[str | Path
     metrics.append(("contacts", str(len(run["contacts"]))))
     verdict = "ok" if run["ok"] else "FAIL"
     findings = [Finding("drive", "error", text) for text in failures]
-    return replay_page(source, drive_replay(result), title=f"{result['behaviour']} in {source.title}",
-                       subtitle=source.subtitle, findings=findings, verdict=verdict,
-                       verdict_text=f"{result['behaviour']}: {'pass' if run['ok'] else 'fail'}", metrics=metrics)
+    return replay_page(source, drive_replay(result), Panel(
+        f"{result['behaviour']} in {source.title}", source.subtitle, findings=findings, verdict=verdict,
+        verdict_text=f"{result['behaviour']}: {'pass' if run['ok'] else 'fail'}", metrics=metrics))

@@ -350,7 +350,7 @@ def scan_rays(world: str | None, world_text: str | None, model_paths: list[str],
 
     scene = read_world_text(world_text, model_paths=tuple(model_paths)) if world_text is not None else \
         read_world(world, model_paths=tuple(model_paths))
-    with Session(scene, robot, tuple(spawn), noise=False) as session:
+    with Session(scene, robot, tuple(spawn), seed=None) as session:
         scan = session.scan(noise=False)
     ox, oy, _, yaw = scan.origin
     rays = []
