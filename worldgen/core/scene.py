@@ -45,6 +45,8 @@ class Shape:
     name: str = ""
     static: bool = True
     color: Tuple[float, float, float, float] | None = None
+    closed: bool | None = field(default=None, compare=False)   # a mesh's surface is closed: None until a slice
+    # needs to know (worldgen.geometry.mesh_section.closed_surface finds it once and keeps it here)
 
     @property
     def label(self) -> str:

@@ -127,7 +127,7 @@ def _mesh_section(shape: Shape, z: float):
 
     if shape.vertices is None or shape.faces is None:
         return None, None
-    return mesh_footprint(_to_world(shape, shape.vertices), shape.vertices, shape.faces, z, SLIVER)
+    return mesh_footprint(shape, _to_world(shape, shape.vertices), z, SLIVER)
 
 
 def section(shape: Shape, z: float, fast: bool = False):
