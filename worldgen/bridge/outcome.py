@@ -4,11 +4,12 @@ of it (:class:`Outcome`), and the findings about the nodes that every transport 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+import json
 import time
 from pathlib import Path
 from typing import Sequence
 
-from ..core.errors import InputError
+from ..core.errors import InputError, WorldgenError
 from ..core.findings import Finding
 from ..core.fsio import check_free
 from .metrics import compute
@@ -233,3 +234,16 @@ def wait_for_end(simulator: Child, options: RunOptions, required: list[Child], s
             return ended
         time.sleep(0.05)
     return None
+
+
+def finish_run(simulator: Child, children: list[Child], nodes: list[NodeSpec], options: RunOptions,
+               supervisor: Supervisor, trace_file: Path) -> tuple[dict, dict[str, bool], Child | None]:
+    """Wait for the run's end (:func:`wait_for_end`), stop everything, and read the simulator's trace: the trace,
+    which nodes were still running at the end, and the required node whose exit ended it (or None)."""
+    ended_by = wait_for_end(simulator, options, [c for c, n in zip(children, nodes) if n.required], supervisor)
+    alive = {c.name: c.running for c in children}
+    supervisor.stop_all()
+    if not trace_file.is_file():
+        raise WorldgenError(f"the simulation ended without a result: {simulator.last_error_line() or 'no output'}",
+                            hint="please report this to the worldgen developers")
+    return json.loads(trace_file.read_text(encoding="utf-8")), alive, ended_by

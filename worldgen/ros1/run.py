@@ -13,14 +13,13 @@ node crashes.
 
 from __future__ import annotations
 
-import json
 import os
 import sys
 import tempfile
 import time
 from pathlib import Path
 
-from ..bridge.outcome import NodeSpec, Outcome, RunOptions, launch_params, outcome_of, wait_for_end
+from ..bridge.outcome import NodeSpec, Outcome, RunOptions, finish_run, launch_params, outcome_of
 from ..bridge.supervise import Child, Supervisor
 from ..bridge.world import World, write_config
 from ..core.errors import WorldgenError
@@ -76,14 +75,7 @@ def run_nodes(world: World, nodes: list[NodeSpec], options: RunOptions, base_env
         _wait_for_nodes(children, uri)
         set_param(uri, "/worldgen/pids", [c.proc.pid for c in children])
         set_param(uri, START_PARAM, True)
-        ended_by = wait_for_end(simulator, options, [c for c, n in zip(children, nodes) if n.required],
-                                 supervisor)
-        alive = {c.name: c.running for c in children}
-        supervisor.stop_all()
-        if not trace_file.is_file():
-            raise WorldgenError(f"the simulation ended without a result: {simulator.last_error_line() or 'no output'}",
-                                hint="please report this to the worldgen developers")
-        trace = json.loads(trace_file.read_text(encoding="utf-8"))
+        trace, alive, ended_by = finish_run(simulator, children, nodes, options, supervisor, trace_file)
         return outcome_of(trace, nodes, children, alive, ended_by, options)
 
 

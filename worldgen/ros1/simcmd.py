@@ -12,7 +12,6 @@ from pathlib import Path
 from typing import Callable
 from urllib.parse import urlparse
 
-from ..core.errors import InputError
 from .master import master_answers, set_param, start_master
 from .gazebo_types import gazebo_msgs_path
 from ..bridge.supervise import Supervisor

@@ -19,7 +19,7 @@ import time
 from contextlib import contextmanager
 from pathlib import Path
 
-from ..bridge.outcome import NodeSpec, Outcome, RunOptions, outcome_of, wait_for_end
+from ..bridge.outcome import NodeSpec, Outcome, RunOptions, finish_run, outcome_of
 from ..bridge.supervise import Child, Supervisor
 from ..bridge.world import World, write_config
 from ..core.errors import WorldgenError
@@ -93,13 +93,7 @@ def run_nodes(world: World, nodes: list[NodeSpec], options: RunOptions, stack: s
                     for i, n in enumerate(nodes)]
         (tmp / "pids.json").write_text(json.dumps([c.proc.pid for c in children]), encoding="utf-8")
         _wait_for_start(simulator, children, start_file)
-        ended_by = wait_for_end(simulator, options, [c for c, n in zip(children, nodes) if n.required], supervisor)
-        alive = {c.name: c.running for c in children}
-        supervisor.stop_all()
-        if not trace_file.is_file():
-            raise WorldgenError(f"the simulation ended without a result: {simulator.last_error_line() or 'no output'}",
-                                hint="please report this to the worldgen developers")
-        trace = json.loads(trace_file.read_text(encoding="utf-8"))
+        trace, alive, ended_by = finish_run(simulator, children, nodes, options, supervisor, trace_file)
         cmd_type = "geometry_msgs/msg/TwistStamped" if stack == "jazzy" and cmd_vel != "twist" else \
             "geometry_msgs/msg/Twist"
         outcome = outcome_of(trace, nodes, children, alive, ended_by, options, cmd_type)
