@@ -146,45 +146,13 @@ def figure(pic: Picture, rays: Sequence[Ray] | None = None):
 
     matplotlib = matplotlib_agg()
     from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.collections import LineCollection
     from matplotlib.figure import Figure
-
-    from ..geometry.slices import footprints_between
-    from ..geometry.placement import ROBOT_RADIUS, SLICE_Z
 
     with matplotlib.rc_context(_default_style()):
         fig = Figure(figsize=FIGSIZE, dpi=DPI)
         FigureCanvasAgg(fig)
         ax = fig.add_axes((0.1, 0.12, 0.85, 0.8))
-        bounds = _Bounds()
-        prints = footprints_between(pic.scene, SLICE_Z[0], SLICE_Z[1])
-        if not prints:
-            ax.text(0.5, 0.5, f"nothing between {SLICE_Z[0]:g} and {SLICE_Z[1]:g} m above the floor",
-                    transform=ax.transAxes, ha="center", va="center", color="#555555")
-        drawn = set()
-        marked = _draw_markings(ax, pic.scene, bounds)
-        for print_ in prints:
-            colour = WALL_COLOUR if print_.label in pic.walls else OBSTACLE_COLOUR
-            drawn.add(colour)
-            for patch in _patches(print_.geometry, facecolor=colour, edgecolor=colour, linewidth=0.5, zorder=2):
-                ax.add_patch(patch)
-            bounds.add_geometry(print_.geometry)
-        for mark in pic.marks:
-            colour = DOOR_COLOUR if mark.type == "door" else WINDOW_COLOUR
-            ax.add_patch(_polygon(mark.corners, facecolor=colour, edgecolor=colour, alpha=0.9, zorder=3))
-            bounds.add_points(mark.corners)
-        if rays:
-            for hit, colour, alpha in ((False, RAY_MISS_COLOUR, 0.5), (True, RAY_HIT_COLOUR, 0.8)):
-                lines = [((x0, y0), (x1, y1)) for x0, y0, x1, y1, h in rays if h == hit]
-                ax.add_collection(LineCollection(lines, colors=colour, linewidths=0.5, alpha=alpha, zorder=1))
-                if hit and lines:
-                    ax.plot([p[1][0] for p in lines], [p[1][1] for p in lines], linestyle="none", marker=".",
-                            markersize=2, color=RAY_HIT_COLOUR, zorder=4)
-            bounds.add_points([(r[0], r[1]) for r in rays] + [(r[2], r[3]) for r in rays])
-        if pic.spawn:
-            radius = ROBOT_RADIUS.get(pic.spawn.model, ROBOT_RADIUS["burger"])
-            _draw_robot(ax, pic.spawn, radius)
-            bounds.add_points([(pic.spawn.x, pic.spawn.y)], radius + 0.2)
+        bounds, drawn, marked = draw_plan(ax, pic, rays)
         xmin, ymin, xmax, ymax = bounds.square(margin=0.5)
         ax.set_xlim(xmin, xmax)
         ax.set_ylim(ymin, ymax)
@@ -199,6 +167,48 @@ def figure(pic: Picture, rays: Sequence[Ray] | None = None):
         _scale_bar(ax, xmax - xmin)
         _legend(fig, pic, rays, drawn, marked)
     return fig
+
+
+def draw_plan(ax, pic: Picture, rays: Sequence[Ray] | None = None):
+    """Draw ``pic`` (and ``rays``) on the axes ``ax``, in metres: floor markings, what stands in the robot's band,
+    openings, the spawn. Returns (the bounds of what was drawn, the colours used for walls and obstacles, the
+    first floor marking's colour or None), for the caller's limits and legend (:func:`figure`; the contact sheet
+    of :mod:`.sheet`)."""
+    from matplotlib.collections import LineCollection
+
+    from ..geometry.slices import footprints_between
+    from ..geometry.placement import ROBOT_RADIUS, SLICE_Z
+
+    bounds = _Bounds()
+    prints = footprints_between(pic.scene, SLICE_Z[0], SLICE_Z[1])
+    if not prints:
+        ax.text(0.5, 0.5, f"nothing between {SLICE_Z[0]:g} and {SLICE_Z[1]:g} m above the floor",
+                transform=ax.transAxes, ha="center", va="center", color="#555555")
+    drawn = set()
+    marked = _draw_markings(ax, pic.scene, bounds)
+    for print_ in prints:
+        colour = WALL_COLOUR if print_.label in pic.walls else OBSTACLE_COLOUR
+        drawn.add(colour)
+        for patch in _patches(print_.geometry, facecolor=colour, edgecolor=colour, linewidth=0.5, zorder=2):
+            ax.add_patch(patch)
+        bounds.add_geometry(print_.geometry)
+    for mark in pic.marks:
+        colour = DOOR_COLOUR if mark.type == "door" else WINDOW_COLOUR
+        ax.add_patch(_polygon(mark.corners, facecolor=colour, edgecolor=colour, alpha=0.9, zorder=3))
+        bounds.add_points(mark.corners)
+    if rays:
+        for hit, colour, alpha in ((False, RAY_MISS_COLOUR, 0.5), (True, RAY_HIT_COLOUR, 0.8)):
+            lines = [((x0, y0), (x1, y1)) for x0, y0, x1, y1, h in rays if h == hit]
+            ax.add_collection(LineCollection(lines, colors=colour, linewidths=0.5, alpha=alpha, zorder=1))
+            if hit and lines:
+                ax.plot([p[1][0] for p in lines], [p[1][1] for p in lines], linestyle="none", marker=".",
+                        markersize=2, color=RAY_HIT_COLOUR, zorder=4)
+        bounds.add_points([(r[0], r[1]) for r in rays] + [(r[2], r[3]) for r in rays])
+    if pic.spawn:
+        radius = ROBOT_RADIUS.get(pic.spawn.model, ROBOT_RADIUS["burger"])
+        _draw_robot(ax, pic.spawn, radius)
+        bounds.add_points([(pic.spawn.x, pic.spawn.y)], radius + 0.2)
+    return bounds, drawn, marked
 
 
 def _draw_markings(ax, scene: Scene, bounds: "_Bounds"):
