@@ -376,3 +376,33 @@ def test_generate_command_end_to_end(tmp_path):
     bad = runner.invoke(main, ["generate", "maze", "--seed", "1", "--loops", "2", "-o", str(tmp_path / "no")])
     assert bad.exit_code == 2 and len(bad.output.strip().splitlines()) == 1 and "--loops" in bad.output
     assert not (tmp_path / "no").exists()
+
+
+# ------------------------------------------------------------------------------------------- the contact sheet
+
+def test_preview_of_a_folder_draws_every_world_to_one_scale(tmp_path):
+    from worldgen.cli import main
+    from worldgen.view.preview import picture
+    from worldgen.view.sheet import _figure, sheet, sheet_inputs
+
+    folder = tmp_path / "set"
+    folder.mkdir()
+    small, big = generate("arena", 2, 1, {"size": (4, 3)})[0], generate("arena", 10, 1, {"size": (9, 6)})[0]
+    for world in (small, big):
+        (folder / world.file_name).write_text(world.text)
+    (folder / "maze_10.yaml").write_text(generate("maze", 10)[0].text)
+    paths = sheet_inputs(folder)
+    assert [p.name for p in paths] == ["arena_2.yaml", "arena_10.yaml", "maze_10.yaml"]   # natural order
+    fig = _figure([(p, picture(p)) for p in paths], "set")
+    panels = fig.axes[:3]
+    spans = {round(ax.get_xlim()[1] - ax.get_xlim()[0], 6) for ax in panels} | \
+        {round(ax.get_ylim()[1] - ax.get_ylim()[0], 6) for ax in panels}
+    assert len(spans) == 1   # every panel as wide and as tall, in metres: one scale
+    assert [ax.get_title() for ax in panels] == ["arena_2", "arena_10", "maze_10"]
+    assert all(ax.patches for ax in panels)   # walls and the spawn drawn in each
+    assert sheet(folder) == sheet(folder)   # the same bytes each time
+    result = CliRunner().invoke(main, ["preview", str(folder), "-o", str(tmp_path / "sheet.png")])
+    assert result.exit_code == 0, result.output
+    assert (tmp_path / "sheet.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    refused = CliRunner().invoke(main, ["preview", str(folder), "--lidar", "-o", str(tmp_path / "x.png")])
+    assert refused.exit_code == 2 and "folder" in refused.output and not (tmp_path / "x.png").exists()

@@ -1,4 +1,5 @@
-"""``worldgen preview SPEC|WORLD``: a top-down PNG of walls, openings, obstacles, the spawn pose and LiDAR rays."""
+"""``worldgen preview SPEC|WORLD|FOLDER``: a top-down PNG of walls, openings, obstacles, the spawn pose and LiDAR
+rays; of a folder, a contact sheet of every world and spec in it, all to one scale."""
 
 from __future__ import annotations
 
@@ -13,7 +14,7 @@ from ..spec.model import ROBOT_MODELS
 
 
 @click.command("preview")
-@click.argument("source", type=click.Path(path_type=Path), metavar="SPEC|WORLD")
+@click.argument("source", type=click.Path(path_type=Path), metavar="SPEC|WORLD|FOLDER")
 @click.option("-o", "--output", type=click.Path(dir_okay=False, path_type=Path), default=None, metavar="FILE.png",
               help="The picture to write (default: the input's name with .png, in the current folder).")
 @click.option("--spawn", default=None, metavar="X,Y[,YAW]",
@@ -27,7 +28,11 @@ from ..spec.model import ROBOT_MODELS
 def preview(source: Path, output: Path | None, spawn: str | None, robot: str | None, lidar: bool,
             model_paths: tuple[Path, ...], force: bool) -> None:
     """Draw SPEC (.yaml, .json, .txt grid) or WORLD (.world, .sdf) from above, to scale: what a TurtleBot3
-    meets at its own height (walls, obstacles; doors and windows of a spec), and where it spawns."""
+    meets at its own height (walls, obstacles; doors and windows of a spec), and where it spawns. A FOLDER is
+    drawn as one contact sheet: every world and spec in it side by side, all to one scale, each with its name and
+    spawn (worldgen generate's sets, a class's worlds)."""
+    if source.is_dir():
+        return _sheet(source, output, spawn, lidar, robot, model_paths, force)
     from ..view.preview import Spawn, picture, render
     from ..core.spawnpose import parse_spawn
 
@@ -51,6 +56,19 @@ def preview(source: Path, output: Path | None, spawn: str | None, robot: str | N
         if finding.severity != "info":
             click.echo(f"worldgen: {finding.severity}: {finding.message}", err=True)
     path = write_file(output, render(pic, rays), force=force)
+    click.echo(f"wrote {path}")
+
+
+def _sheet(folder: Path, output: Path | None, spawn: str | None, lidar: bool, robot: str | None,
+           model_paths: tuple[Path, ...], force: bool) -> None:
+    from ..view.sheet import sheet
+
+    if spawn is not None or lidar:
+        raise InputError(f"{'--spawn' if spawn is not None else '--lidar'} is for one world, and {folder} is a folder",
+                         hint="leave it out to draw the folder's contact sheet, or give one file")
+    output = output or Path(f"{folder.resolve().name or 'sheet'}.png")
+    check_free([output], force)
+    path = write_file(output, sheet(folder, model_paths, robot), force=force)
     click.echo(f"wrote {path}")
 
 

@@ -229,8 +229,13 @@ def make(name: str, options: RoomsOptions, space: RobotSpace, rng: Rng) -> Tuple
     robot = _spawn(rects[start_room], cores[start_room], spans[start_room], obstacles, space, options.robot, rng)
     spec = Spec(name=name, style=style, rooms=rooms, obstacles=tuple(obstacles), robot=robot)
     corridor = " and a corridor" if hall else ""
-    return spec, (f"a {w:g} x {h:g} m flat of {len(rects) - (1 if hall else 0)} rooms{corridor}, {len(doors)} doors "
-                  f"{door:g} m wide, {len(obstacles)} pieces of furniture; the robot starts in the {names[start_room]}")
+    rooms_ = _count(len(rects) - (1 if hall else 0), "room")
+    return spec, (f"a {w:g} x {h:g} m flat of {rooms_}{corridor}, {_count(len(doors), 'door')} {door:g} m wide, "
+                  f"{_count(len(obstacles), 'piece')} of furniture; the robot starts in room '{names[start_room]}'")
+
+
+def _count(n: int, what: str) -> str:
+    return f"{n} {what}{'' if n == 1 else 's'}"
 
 
 def _faces(r: Rect, spans: List[DoorSpan], obstacles: List[Obstacle]):
