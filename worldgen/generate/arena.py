@@ -1,15 +1,14 @@
-"""``arena``: one closed room whose outline is not convex, for wall following and for stopping at a wall from
-any side.
+"""``arena``: one closed room whose outline is not convex, for wall following and for stopping at a wall from any side.
 
-``right``: the footprint is a grid of square cells ``min_width`` across; cells are taken away from its edge one at
-a time (each time only if the rest stays one piece, without a hole and without two cells meeting only at a
-corner), so the outline stays one simple right-angled polygon and no part of the floor is narrower than a cell.
-At least one cell goes, so the room is never a plain rectangle. ``free``: a polygon of 6 to 10 corners round the
-footprint's centre, each at a random angle and distance (a star-shaped polygon never crosses itself), kept when it
-has a corner pointing in (by 15° at least), no corner sharper than :data:`MIN_ANGLE`, no wall shorter than :data:`MIN_EDGE` and no
-two walls that do not meet closer than ``min_width``; otherwise drawn again (a right-angled L after
-:data:`TRIES` draws). The robot starts at a random place at least its turning clearance from every wall, facing
-a wall 1 to 3.3 m ahead.
+``right``: the footprint is a grid of square cells ``min_width`` across; cells are taken away from its edge one at a
+time (each time only if the rest stays one piece, without a hole and without two cells meeting only at a corner), so
+the outline stays one simple right-angled polygon and no part of the floor is narrower than a cell. At least one
+cell goes, so the room is never a plain rectangle. ``free``: a polygon of 6 to 10 corners round the footprint's
+centre, each at a random angle and distance (a star-shaped polygon never crosses itself), kept when it has a corner
+pointing in (by 15° at least), no corner sharper than :data:`MIN_ANGLE`, no wall shorter than :data:`MIN_EDGE` and
+no two walls that do not meet closer than ``min_width``; otherwise drawn again (a right-angled L after :data:`TRIES`
+draws). The robot starts at a random place at least its turning clearance from every wall, facing a wall 1 to 3.3 m
+ahead.
 """
 
 from __future__ import annotations
@@ -200,7 +199,8 @@ def make(name: str, options: ArenaOptions, space: RobotSpace, rng: Rng) -> Tuple
                 robot=RobotPose(options.robot, spawn, round(yaw, 4)))
     area = polygon_area(polygon)
     shape = "right-angled" if options.outline == "right" else "free"
-    return spec, f"a {shape} arena of {len(polygon)} walls and {area:.1f} m², nowhere narrower than {options.min_width:g} m"
+    return spec, (f"a {shape} arena of {len(polygon)} walls and {area:.1f} m², nowhere narrower than "
+                  f"{options.min_width:g} m")
 
 
 def _faces(polygon: Sequence[Point]) -> List[Tuple[Point, Point]]:

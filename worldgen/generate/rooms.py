@@ -223,8 +223,8 @@ def make(name: str, options: RoomsOptions, space: RobotSpace, rng: Rng) -> Tuple
         pieces, core = furnish(names[i], floor, spans[i], 2 * space.clearance, options.furniture, rng)
         obstacles += pieces
         cores.append(core)
-    rooms = tuple(Room(names[i], tuple(r.corners()), style, tuple(sorted(openings[i], key=lambda o: (o.wall, o.offset))))
-                  for i, r in enumerate(rects))
+    rooms = tuple(Room(names[i], tuple(r.corners()), style,
+                       tuple(sorted(openings[i], key=lambda o: (o.wall, o.offset)))) for i, r in enumerate(rects))
     start_room = rng.choice([i for i in range(len(rects)) if i != hall_index] or [0])
     robot = _spawn(rects[start_room], cores[start_room], spans[start_room], obstacles, space, options.robot, rng)
     spec = Spec(name=name, style=style, rooms=rooms, obstacles=tuple(obstacles), robot=robot)
