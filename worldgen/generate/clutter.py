@@ -27,7 +27,7 @@ GRAIN = 0.05
 SLACK = 0.002          # m: kept beyond every gap, for the rounding of what is written
 AHEAD = (1.0, 3.3)
 HEADINGS = tuple(k * PI / 4 for k in range(-3, 5))
-MISSES = 60           # drops that do not fit, one after another, before the room counts as full
+MISSES = 40           # drops that do not fit, one after another, before the room counts as full
 ROW_CHANCE = 0.2       # a drop is a row of crates this often
 BOX_COLOUR = Material("Gazebo/Wood")
 CYLINDER_COLOUR = Material("Gazebo/Blue")
@@ -90,24 +90,29 @@ def _apart(a: Shape, b: Shape, gap: float) -> bool:
     return True
 
 
+def _pick(rng: Rng, low: float, count: int, grain: float) -> float:
+    """One of ``low``, ``low + grain``, … (``count`` values), to the millimetre."""
+    return round(low + grain * rng.below(count), 3)
+
+
 def _drop(area: Rect, shapes: str, rng: Rng) -> Shape:
     """One random shape whose centre lies in ``area``."""
     kind = shapes if shapes != "mixed" else ("row" if rng.chance(ROW_CHANCE) else rng.choice(("box", "cylinder")))
     if shapes == "box" and rng.chance(ROW_CHANCE):
         kind = "row"
     cx, cy = round(rng.uniform(area.x0, area.x1), 2), round(rng.uniform(area.y0, area.y1), 2)
-    height = rng.step(0.3, 1.0, 0.05)
+    height = _pick(rng, 0.3, 15, 0.05)                 # 0.3 … 1.0 m
     if kind == "cylinder":
-        r = rng.step(0.1, 0.35, 0.01)
+        r = _pick(rng, 0.1, 26, 0.01)                  # 0.1 … 0.35 m
         return Shape((cx, cy), r, r, PI * r * r, height, radius=r)
     if kind == "box":
-        size = (rng.step(0.2, 0.8, 0.05), rng.step(0.2, 0.8, 0.05))
+        size = (_pick(rng, 0.2, 13, 0.05), _pick(rng, 0.2, 13, 0.05))   # 0.2 … 0.8 m
         yaw = round(rng.uniform(0, PI), 4)
         return Shape((cx, cy), dist(size, (0.0, 0.0)) / 2, min(size) / 2, size[0] * size[1], height,
                      (((cx, cy), size, yaw),))
     # a row of crates, flush along x or y: every joint closed
-    count, deep = rng.between(2, 3), rng.step(0.3, 0.5, 0.05)
-    lengths = [rng.step(0.3, 0.6, 0.05) for _ in range(count)]
+    count, deep = rng.between(2, 3), _pick(rng, 0.3, 5, 0.05)   # 0.3 … 0.5 m deep
+    lengths = [_pick(rng, 0.3, 7, 0.05) for _ in range(count)]   # 0.3 … 0.6 m long
     along_x = rng.chance(0.5)
     total, at = sum(lengths), -sum(lengths) / 2
     boxes = []

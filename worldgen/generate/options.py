@@ -50,7 +50,7 @@ class RoomsOptions:
 class ClutterOptions:
     size: Size = (6.0, 5.0)
     robot: str = DEFAULT_ROBOT
-    density: float = 0.12
+    density: float = 0.08
     gap: Optional[float] = None
     shapes: str = "mixed"
     wall_height: float = 0.5
@@ -116,8 +116,8 @@ FLAGS: Dict[str, Tuple[Flag, ...]] = {
         Flag("windows", "--windows/--no-windows", "bool", "windows in outer walls (above the LiDAR)"),
         WALL_HEIGHT),
     "clutter": COMMON + (
-        Flag("density", "--density", "float", "the share of the floor the obstacles cover (0 to 0.35; fewer fit "
-                                               "when every gap must stay passable)"),
+        Flag("density", "--density", "float", "the share of the floor the obstacles should cover (0 to 0.3; with "
+                                               "every gap passable a room is full at about 0.1)"),
         Flag("gap", "--gap", "float", "the narrowest gap between obstacles, and between them and the walls (m; "
                                       "default: the robot's width + 0.2)"),
         Flag("shapes", "--shapes", "choice", "what stands in the room", ("mixed", "box", "cylinder")),
@@ -165,7 +165,7 @@ def check_options(kind: str, options) -> None:
     if options.robot not in ROBOT_MODELS:
         raise InputError(f"--robot {options.robot} is not a TurtleBot3", hint=f"use {', '.join(ROBOT_MODELS)}")
     _range(options.wall_height, 0.25, 10.0, "--wall-height", "the walls' height")
-    for name, low, high in (("loops", 0.0, 1.0), ("density", 0.0, 0.35), ("cell", 0.3, 10.0),
+    for name, low, high in (("loops", 0.0, 1.0), ("density", 0.0, 0.3), ("cell", 0.3, 10.0),
                             ("door", 0.3, 5.0), ("gap", 0.1, 5.0), ("min_width", 0.5, 20.0),
                             ("min_radius", 0.1, 20.0), ("tape_width", 0.005, 0.5)):
         value = getattr(options, name, None)

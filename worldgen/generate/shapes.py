@@ -162,14 +162,16 @@ def band_hit(origin: Point, heading: float, half_width: float, segments: Sequenc
 def facing(origin: Point, headings: Sequence[float], half_width: float, segments: Sequence[Tuple[Point, Point]],
            near: float, far: float, rng) -> float:
     """A heading from ``headings`` with a wall square across the band ahead (within 0.2 m over the band), between
-    ``near`` and ``far`` away, chosen at random; when none has, the one whose nearest wall is closest to halfway
-    between."""
-    reach = [(yaw, band_hit(origin, yaw, half_width, segments)) for yaw in headings]
-    good = [yaw for yaw, (lo, hi) in reach if near <= lo and hi <= far and hi - lo <= 0.2]
-    if good:
-        return rng.choice(good)
+    ``near`` and ``far`` away: the first such in a random order; when none has, the one whose nearest wall is
+    closest to halfway between."""
+    reach = []
+    for yaw in rng.shuffled(headings):
+        lo, hi = band_hit(origin, yaw, half_width, segments)
+        if near <= lo and hi <= far and hi - lo <= 0.2:
+            return yaw
+        reach.append((yaw, lo))
     middle = (near + far) / 2
-    return min(reach, key=lambda item: (abs(item[1][0] - middle), item[0]))[0]
+    return min(reach, key=lambda item: (abs(item[1] - middle), item[0]))[0]
 
 
 def polygon_area(polygon: Sequence[Point]) -> float:

@@ -4,7 +4,7 @@ tighter than ``min_radius``, for ``worldgen run --task line-follow``.
 The curve is star-shaped round the room's centre: at angle θ its distance is r(θ) = 1 + Σ a_k cos(kθ + φ_k) for
 k = 2, 3, 4 (random a_k, φ_k; r stays between 0.75 and 1.25, so it never crosses itself), stretched to fill the
 room less :data:`WALL_MARGIN` from each wall. Its curvature is worked out from the exact derivatives of that
-formula at 720 angles; while its tightest bend is tighter than ``min_radius`` (with 10 % to spare) the wobbles
+formula at 360 angles; while its tightest bend is tighter than ``min_radius`` (with 10 % to spare) the wobbles
 are damped and it is tried again, down to an ellipse, which :func:`resolve` makes sure is gentle enough. The tape
 is laid through points at most 6 cm apart. The robot (a TurtleBot3 with a camera) starts on the tape at θ = 0,
 facing along it counter-clockwise.
@@ -28,7 +28,8 @@ from .trig import TAU, atan2, sin_cos
 THICKNESS = 0.15
 GRAIN = 0.05
 WALL_MARGIN = 0.65     # m: from the tape's centre-line to a wall's face, more than a Waffle's turning circle
-SAMPLES = 720
+SAMPLES = 360          # angles the curve is measured at (a degree apart)
+FINER = (720, 1440, 2880, 4320)   # the tape's angles in a room too big for SAMPLES points 6 cm apart
 SPACING = 0.06         # m: the tape's points are at most this far apart
 SPARE = 1.1            # the tightest bend is kept this much gentler than the limit
 AMPLITUDES = (0.12, 0.08, 0.05)   # the largest a_2, a_3, a_4
@@ -61,10 +62,10 @@ def resolve(options: TrackOptions, space: RobotSpace) -> TrackOptions:
     return options
 
 
-@lru_cache(maxsize=1)
-def _circle() -> Tuple[Tuple[float, float], ...]:
-    """(sin, cos) of the :data:`SAMPLES` angles 2πi/SAMPLES, worked out once."""
-    return tuple(sin_cos(TAU * i / SAMPLES) for i in range(SAMPLES))
+@lru_cache(maxsize=len(FINER) + 1)
+def _circle(n: int) -> Tuple[Tuple[float, float], ...]:
+    """(sin, cos) of the ``n`` angles 2πi/n, worked out once."""
+    return tuple(sin_cos(TAU * i / n) for i in range(n))
 
 
 class _Curve:
@@ -75,12 +76,12 @@ class _Curve:
         self.terms, self.sx, self.sy = terms, sx, sy
         self.phases = [(k, a) + sin_cos(phase) for k, a, phase in terms]
 
-    def at(self, i: int) -> Tuple[Point, Point, Point]:
-        """The point at θ_i, its first and second derivatives in θ."""
-        circle = _circle()
+    def at(self, i: int, n: int = SAMPLES) -> Tuple[Point, Point, Point]:
+        """The point at θ = 2πi/n, its first and second derivatives in θ."""
+        circle = _circle(n)
         r, r1, r2 = 1.0, 0.0, 0.0
         for k, a, sp, cp in self.phases:
-            sk, ck = circle[(k * i) % SAMPLES]
+            sk, ck = circle[(k * i) % n]
             s, c = sk * cp + ck * sp, ck * cp - sk * sp   # sin and cos of kθ + φ
             r, r1, r2 = r + a * c, r1 - k * a * s, r2 - k * k * a * c
         s, c = circle[i]
@@ -108,10 +109,14 @@ def _fitted(terms, ax: float, ay: float) -> _Curve:
 
 
 def _points(curve: _Curve) -> List[Point]:
-    """The tape's points: every n-th of the angles, n as large as keeps them at most :data:`SPACING` apart."""
+    """The tape's points: every step-th of the :data:`SAMPLES` angles, the step as large as keeps them at most
+    :data:`SPACING` apart (or all of :data:`FINER` angles, in a big room)."""
     fastest = max(math.sqrt(d[0] * d[0] + d[1] * d[1]) for d in (curve.at(i)[1] for i in range(SAMPLES)))
     need = TAU * fastest / SPACING
-    step = max(n for n in range(1, SAMPLES + 1) if SAMPLES % n == 0 and SAMPLES / n >= need)
+    if need > SAMPLES:
+        n = next((n for n in FINER if n >= need), FINER[-1])
+        return [(round(p[0], 3), round(p[1], 3)) for p in (curve.at(i, n)[0] for i in range(n))]
+    step = max(k for k in range(1, SAMPLES + 1) if SAMPLES % k == 0 and SAMPLES / k >= need)
     return [(round(p[0], 3), round(p[1], 3)) for p in (curve.at(i)[0] for i in range(0, SAMPLES, step))]
 
 
