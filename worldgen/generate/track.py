@@ -89,35 +89,46 @@ class _Curve:
         return ((sx * r * c, sy * r * s), (sx * (r1 * c - r * s), sy * (r1 * s + r * c)),
                 (sx * (r2 * c - 2 * r1 * s - r * c), sy * (r2 * s + 2 * r1 * c - r * s)))
 
-    def tightest(self) -> float:
-        """The smallest radius of curvature over the :data:`SAMPLES` angles."""
-        best = math.inf
+    def point(self, i: int, n: int = SAMPLES) -> Point:
+        """The point at θ = 2πi/n alone."""
+        circle = _circle(n)
+        r = 1.0
+        for k, a, sp, cp in self.phases:
+            sk, ck = circle[(k * i) % n]
+            r += a * (ck * cp - sk * sp)
+        s, c = circle[i]
+        return (self.sx * r * c, self.sy * r * s)
+
+    def measure(self) -> Tuple[float, float]:
+        """(the smallest radius of curvature, the largest |dP/dθ|) over the :data:`SAMPLES` angles."""
+        tightest, fastest = math.inf, 0.0
         for i in range(SAMPLES):
             _, (dx, dy), (ddx, ddy) = self.at(i)
             speed2 = dx * dx + dy * dy
+            speed = math.sqrt(speed2)
+            fastest = max(fastest, speed)
             bend = abs(dx * ddy - dy * ddx)
             if bend > 0:
-                best = min(best, speed2 * math.sqrt(speed2) / bend)
-        return best
+                tightest = min(tightest, speed2 * speed / bend)
+        return tightest, fastest
 
 
 def _fitted(terms, ax: float, ay: float) -> _Curve:
     """The curve stretched so that its points just fill [−ax, ax] × [−ay, ay]."""
     unit = _Curve(terms)
-    points = [unit.at(i)[0] for i in range(SAMPLES)]
+    points = [unit.point(i) for i in range(SAMPLES)]
     return _Curve(terms, ax / max(abs(p[0]) for p in points), ay / max(abs(p[1]) for p in points))
 
 
-def _points(curve: _Curve) -> List[Point]:
+def _points(curve: _Curve, fastest: float) -> List[Point]:
     """The tape's points: every step-th of the :data:`SAMPLES` angles, the step as large as keeps them at most
-    :data:`SPACING` apart (or all of :data:`FINER` angles, in a big room)."""
-    fastest = max(math.sqrt(d[0] * d[0] + d[1] * d[1]) for d in (curve.at(i)[1] for i in range(SAMPLES)))
+    :data:`SPACING` apart (``fastest``: the largest |dP/dθ|), or all of :data:`FINER` angles in a big room."""
     need = TAU * fastest / SPACING
     if need > SAMPLES:
         n = next((n for n in FINER if n >= need), FINER[-1])
-        return [(round(p[0], 3), round(p[1], 3)) for p in (curve.at(i, n)[0] for i in range(n))]
+        return [(round(x, 3), round(y, 3)) for x, y in (curve.point(i, n) for i in range(n))]
     step = max(k for k in range(1, SAMPLES + 1) if SAMPLES % k == 0 and SAMPLES / k >= need)
-    return [(round(p[0], 3), round(p[1], 3)) for p in (curve.at(i)[0] for i in range(0, SAMPLES, step))]
+    return [(round(x, 3), round(y, 3)) for x, y in (curve.point(i) for i in range(0, SAMPLES, step))]
 
 
 def make(name: str, options: TrackOptions, space: RobotSpace, rng: Rng) -> Tuple[Spec, str]:
@@ -125,10 +136,10 @@ def make(name: str, options: TrackOptions, space: RobotSpace, rng: Rng) -> Tuple
     drawn = [(k, rng.uniform(-top, top), rng.uniform(0, TAU)) for k, top in zip((2, 3, 4), AMPLITUDES)]
     for damping in DAMPING:
         curve = _fitted([(k, a * damping, phase) for k, a, phase in drawn], ax, ay)
-        tightest = curve.tightest()
+        tightest, fastest = curve.measure()
         if tightest >= SPARE * options.min_radius:
             break
-    points = _points(curve)
+    points = _points(curve, fastest)
     _, (dx, dy), _ = curve.at(0)
     w, h = options.size
     style = WallStyle(THICKNESS, options.wall_height, Material())
