@@ -9,6 +9,14 @@ folders, as a workspace's ``src/`` often holds them), not descending into a pack
 ``CATKIN_IGNORE`` (or colcon's ``COLCON_IGNORE``, ament's ``AMENT_IGNORE``), skipping hidden folders, in sorted
 order so that the first match is the same on every machine. ROS 2 (ament) packages are found the same way.
 Manifests are parsed with lxml without entities, DTDs or network access.
+
+Why not ``catkin_pkg.packages.find_package_paths``/``find_packages`` (tests/test_package_crawl.py checks that the
+two find the same packages where catkin_pkg can be used): its walk follows symlinked folders without remembering
+where it has been, so one student's ``ln -s ../.. up`` in a class folder is walked 40 deep (until the kernel's
+ELOOP; 82 results for 2 packages) and two such links did not finish in 120 s; its order is the file system's; it
+cannot stop after ``limit`` packages nor enter a workspace through ``src/`` only; ``find_packages`` validates each
+manifest and raises one multi-line error for the first it dislikes (a maintainer e-mail ``a@b.c``), where a lookup
+needs only the ``<name>``. Over 40 packages both walks take 1.7 ms; with their names, 3.6 ms here, 8.7 ms there.
 """
 
 from __future__ import annotations
