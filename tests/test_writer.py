@@ -16,8 +16,9 @@ from shapely.geometry import LineString, Polygon
 from shapely.ops import unary_union
 
 from worldgen.cli import main
+from worldgen.core.numbers import format_number
 from worldgen.geometry.building import build_geometry
-from worldgen.sdf.writer import SDF_VERSIONS, fmt, model_config, model_sdf, planned_files, world_sdf
+from worldgen.sdf.writer import SDF_VERSIONS, model_config, model_sdf, planned_files, world_sdf
 from worldgen.spec.model import Material, Obstacle, Opening, Room, Spec, WallStyle
 
 STYLE = WallStyle()
@@ -183,7 +184,8 @@ def test_rgba_material_and_obstacle_models():
 
 
 def test_numbers_are_short_fixed_and_never_minus_zero():
-    assert [fmt(v) for v in (0.0, -0.0, -1e-9, 1.5, 2.0, 1 / 3, -2.5e-7, 123456.7, 1e-5)] == \
+    values = (0.0, -0.0, -1e-9, 1.5, 2.0, 1 / 3, -2.5e-7, 123456.7, 1e-5)
+    assert [format_number(v, 6, point=False) for v in values] == \
         ["0", "0", "0", "1.5", "2", "0.333333", "0", "123456.7", "0.00001"]
     spec = Spec("r", rooms=(Room("hex", tuple((math.cos(t) * 3, math.sin(t) * 3)
                                               for t in (k * math.pi / 3 for k in range(6))), STYLE),))

@@ -22,7 +22,7 @@ from __future__ import annotations
 from lxml import etree
 
 from ..core.materials import script_color
-from .writer import fmt
+from ..core.numbers import format_numbers
 
 GZ_SDF_VERSIONS = ("1.8", "1.9")
 DEFAULT_GZ_SDF_VERSION = "1.8"
@@ -71,6 +71,6 @@ def _script_as_colour(material) -> None:
     material.remove(script)
     for offset, tag in enumerate(("ambient", "diffuse")):
         element = etree.Element(tag)
-        element.text = " ".join(fmt(v) for v in colour)
+        element.text = format_numbers(colour, 6, point=False)
         material.insert(at + offset, element)
 

@@ -7,9 +7,10 @@ from typing import Optional
 
 import numpy as np
 
+from ..core.numbers import format_numbers
 from .context import ReadContext, SdfFile
 from .resolve import uri_fix
-from .values import children, fmt, read_floats
+from .values import children, read_floats
 
 
 def read_geometry(ctx: ReadContext, geometry, f: SdfFile, label: str, visual: bool = False) -> Optional[dict]:
@@ -30,8 +31,8 @@ def read_geometry(ctx: ReadContext, geometry, f: SdfFile, label: str, visual: bo
     if g.tag == "box":
         size = read_floats(ctx, g.findtext("size"), 3, (1.0, 1.0, 1.0), f, g, f"box size of {label}")
         if min(size) <= 0 or _too_large(size):
-            return _bad_size(ctx, f"box {label} has size {fmt(size)}: every side must be positive and under "
-                             f"{MAX_SIZE:g} m", where)
+            return _bad_size(ctx, f"box {label} has size {format_numbers(size, None)}: every side must be positive "
+                             f"and under {MAX_SIZE:g} m", where)
         return {"kind": "box", "size": size}
     if g.tag == "cylinder":
         radius = read_floats(ctx, g.findtext("radius"), 1, (1.0,), f, g, f"cylinder radius of {label}")[0]
@@ -88,8 +89,8 @@ def read_mesh(ctx: ReadContext, g, f: SdfFile, label: str) -> Optional[dict]:
         return None
     scale = read_floats(ctx, g.findtext("scale"), 3, (1.0, 1.0, 1.0), f, g, f"mesh scale of {label}")
     if min(scale) <= 0 or _too_large(scale):
-        return _bad_size(ctx, f"mesh {label} has scale {fmt(scale)}: every factor must be positive and under "
-                         f"{MAX_SIZE:g}", f.where(g))
+        return _bad_size(ctx, f"mesh {label} has scale {format_numbers(scale, None)}: every factor must be positive "
+                         f"and under {MAX_SIZE:g}", f.where(g))
     if g.find("submesh") is not None:
         ctx.note("mesh", "info", f"mesh {label} names a <submesh>; the whole mesh is used", f.where(g))
     resolved = ctx.resolver.resolve(uri, f.dir, want_dir=False)

@@ -8,9 +8,10 @@ from typing import Dict, List, Optional
 import numpy as np
 
 from ..core import poses
+from ..core.numbers import format_numbers
 from .context import ReadContext, SdfFile
 from .tree import Model
-from .values import children, fmt, read_floats, read_pose
+from .values import children, read_floats, read_pose
 
 
 def apply_state_block(ctx: ReadContext, state, models: List[Model], f: SdfFile) -> None:
@@ -48,8 +49,8 @@ def _state_model(ctx: ReadContext, el, models: Dict[str, Model], f: SdfFile, mov
                 moved.append(f"'{name}' {shift:.2f} m" + (f", {math.degrees(turn):.0f}°" if turned else ""))
     scale = read_floats(ctx, el.findtext("scale"), 3, (1.0, 1.0, 1.0), f, el, f"state scale of '{name}'")
     if any(abs(s - 1.0) > 1e-9 for s in scale):
-        ctx.note("state", "info", f"<state> scales model '{name}' by {fmt(scale)}; the reader keeps its "
-                 "unscaled geometry", f.where(el))
+        ctx.note("state", "info", f"<state> scales model '{name}' by {format_numbers(scale, None)}; the reader "
+                 "keeps its unscaled geometry", f.where(el))
     links = {link.name: link for link in model.links}
     for link_el in children(el, "link"):
         link = links.get(link_el.get("name") or "")

@@ -10,6 +10,7 @@ import numpy as np
 from lxml import etree
 
 from ..core import poses
+from ..core.numbers import format_numbers
 from .context import ReadContext, SdfFile
 
 
@@ -56,7 +57,7 @@ def read_floats(ctx: ReadContext, text, count: int, default: tuple, f: SdfFile, 
         values = ()
     if len(values) != count or not all(math.isfinite(v) for v in values):
         ctx.note("structure", "warning", f"{what} '{' '.join(parts)}' is not {count} number"
-                 f"{'s' if count > 1 else ''}; used {fmt(default)}", f.where(el),
+                 f"{'s' if count > 1 else ''}; used {format_numbers(default, None)}", f.where(el),
                  f"write {count} plain numbers separated by spaces")
         return default
     return values
@@ -86,8 +87,3 @@ def check_unique(ctx: ReadContext, names: list[str], what: str, where: str) -> N
     if dupes:
         ctx.note("names", "warning", f"duplicate {what}: {', '.join(dupes)}; Gazebo refuses or renames them",
                  where, "give each one a unique name")
-
-
-def fmt(values) -> str:
-    """Numbers as SDF writes them: shortest form, space-separated."""
-    return " ".join(f"{v:g}" for v in values)

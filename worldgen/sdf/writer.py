@@ -13,6 +13,7 @@ from pathlib import Path
 
 from lxml import etree
 
+from ..core.numbers import format_numbers
 from ..geometry.building import Building, Wall, build_geometry, obstacle_names
 from ..geometry.tape import THICKNESS, layer_bottom, tape_pieces
 from ..spec.markings import marking_names
@@ -32,14 +33,9 @@ CAMERA_PAD = 0.5                # … plus this, in metres
 GROUND_SIZE = 100.0             # the ground plane's side, in metres, unless the building needs more
 
 
-def fmt(x: float) -> str:
-    """A number as SDF text: up to 6 decimals, trailing zeros trimmed, never ``-0``."""
-    text = f"{x:.6f}".rstrip("0").rstrip(".")
-    return "0" if text in ("-0", "") else text
-
-
 def _vec(*values: float) -> str:
-    return " ".join(fmt(v) for v in values)
+    """Numbers as SDF text, space-separated: up to 6 decimals, trailing zeros trimmed, never ``-0``."""
+    return format_numbers(values, 6, point=False)
 
 
 def _el(parent, tag: str, text: str | None = None, **attrs: str):
@@ -263,10 +259,10 @@ def _obstacle_model(world, name: str, o: Obstacle) -> None:
         if o.shape == "box":
             _el(shape, "size", _vec(*o.size))
         elif o.shape == "cylinder":
-            _el(shape, "radius", fmt(o.radius))
-            _el(shape, "length", fmt(o.height))
+            _el(shape, "radius", _vec(o.radius))
+            _el(shape, "length", _vec(o.height))
         else:
-            _el(shape, "radius", fmt(o.radius))
+            _el(shape, "radius", _vec(o.radius))
         if tag == "visual":
             _material(element, o.material)
     _el(model, "static", "1")
@@ -321,6 +317,6 @@ def _flat_piece(link, name: str, material: Material, pose: tuple[float, float, f
         _el(_el(geometry, "box"), "size", _vec(size[0], size[1], THICKNESS))
     else:
         cylinder = _el(geometry, "cylinder")
-        _el(cylinder, "radius", fmt(radius))
-        _el(cylinder, "length", fmt(THICKNESS))
+        _el(cylinder, "radius", _vec(radius))
+        _el(cylinder, "length", _vec(THICKNESS))
     _material(visual, material)
