@@ -102,6 +102,7 @@ def test_a_timer_node_with_reliable_qos_and_the_stacks_cmd_vel_type(stack, stamp
     code, doc = run_json([str(ROOM), str(NODES / "timer_stopper.py"), "_use_sim_time:=true", f"_stamped:={stamped}",
                           "--ros", stack, "--task", "stop-at-wall", "--rate", "max"], rclpy_python, tag)
     messages = [f["message"] for f in doc["findings"]]
+    assert not [m for m in messages if "do not follow /clock" in m]   # use_sim_time: it follows the clock
     if moves:
         assert code == 0, messages
         assert doc["metrics"]["final_front_distance_m"] == pytest.approx(0.5, abs=0.1)
@@ -182,3 +183,11 @@ def test_a_folder_of_three_ament_submissions_with_two_jobs(course, rclpy_python,
     assert results["cy"]["ok"] is False and any("cy crashed" in f["message"] for f in results["cy"]["findings"])
     assert took < 120
     assert leftovers(tag) == []
+
+
+def test_a_node_on_the_wall_clock_at_rate_max_is_said(rclpy_python, tag):
+    """Without use_sim_time a node's timer follows the wall clock: at --rate max the report says so."""
+    code, doc = run_json([str(ROOM), str(NODES / "timer_stopper.py"), "--ros", "jazzy", "--duration", "3",
+                          "--rate", "max"], rclpy_python, tag)
+    said = [f for f in doc["findings"] if "do not follow /clock" in f["message"]]
+    assert len(said) == 1 and said[0]["severity"] == "info" and "use_sim_time" in said[0]["fix"]

@@ -10,7 +10,7 @@ real Gazebo — a Twist publisher on Jazzy's TwistStamped ``cmd_vel``, a best-ef
 subscription — moves nothing here either, and the trace holds a finding that says why.
 
 Run as ``python -m worldgen.ros2.node CONFIG.json`` (see :func:`main`): the config of :func:`worldgen.bridge.world.
-write_config` plus ``stack``, ``domain``, ``discovery`` (localhost, subnet), ``start_file`` (hold simulated time at 0
+write_config` plus ``stack``, ``domain``, ``discovery`` (``range``: localhost or subnet, ``peers``: ROS_STATIC_PEERS), ``start_file`` (hold simulated time at 0
 until it exists, or until ``expect`` other DDS participants have matched some topic of the robot's) and ``cmd_vel``
 (jazzy: ``twist`` when the bridge is configured for Twist).
 """
@@ -262,6 +262,7 @@ class Watcher:
         self.publications = BuiltinDataReader(dp, BuiltinTopicDcpsPublication)
         self.subscriptions = BuiltinDataReader(dp, BuiltinTopicDcpsSubscription)
         self.others: set = set()
+        self.on_clock: set = set()   # the participants that subscribe to /clock (use_sim_time)
         self.said: set = set()
         self.cmd_topics = {"rt" + r.cmd_name: r for r in wire.robots}
         table = topics(wire.stack)
@@ -277,6 +278,8 @@ class Watcher:
             if robot is not None and sample.participant_key != self.own:
                 self._publication(robot, sample)
         for sample in self.subscriptions.take(N=256):
+            if getattr(sample, "topic_name", "") == "rt/clock":
+                self.on_clock.add(sample.participant_key)
             topic = self.best_effort.get(getattr(sample, "topic_name", ""))
             if topic is not None and sample.participant_key != self.own and _reliable(sample.qos):
                 self._say(("reliable", topic.name), "warning",
@@ -298,6 +301,17 @@ class Watcher:
             self._say(("qos", robot.cmd_name), "error",
                       f"a node publishes {robot.cmd_name} best effort, but Gazebo's subscription is reliable: "
                       "the robot does not move", "publish cmd_vel with the default QoS (depth 10)")
+
+    def clock_followers(self, rate: float) -> None:
+        """At a rate other than real time: a finding when some node's participant never subscribed to /clock
+        (its timers and sleeps follow the wall clock, so it acts at another pace than in Gazebo)."""
+        ignoring = len(self.others - self.on_clock)
+        if rate != 1.0 and ignoring:
+            pace = "as fast as it goes" if rate <= 0 else f"at {rate:g}x real time"
+            self._say(("clock",), "info",
+                      f"{ignoring} of the {len(self.others)} node processes do not follow /clock (use_sim_time is "
+                      f"off): simulated time ran {pace}, their timers and sleeps on the wall clock",
+                      "grade at --rate 1, or run the node with use_sim_time (_use_sim_time:=true after it)")
 
     def _say(self, key, severity: str, message: str, fix: str) -> None:
         if key not in self.said:
@@ -402,7 +416,9 @@ def main(argv: list) -> int:
     except WorldgenError as err:
         print(f"worldgen: error: {err}", file=sys.stderr, flush=True)
         return 2
-    discovery = Discovery(config.get("discovery") or "localhost")
+    given = config.get("discovery") or {}
+    discovery = Discovery("localhost" if given.get("range") in (None, "off") else given["range"],
+                          tuple(given.get("peers") or ()))
     duration = config.get("duration")
     timing = {"sim_time_s": 0.0, "wall_time_s": 0.0, "real_time_factor": None, "interrupted": True}
     with session, Participant(int(config["domain"]), discovery) as participant:
@@ -418,6 +434,7 @@ def main(argv: list) -> int:
             timing = run_loop(wire, float(config.get("rate") or 0.0), duration, _pids(config),
                               udp=True)
             watcher.look()
+            watcher.clock_followers(float(config.get("rate") or 0.0))
         except KeyboardInterrupt:
             pass
         finally:

@@ -85,7 +85,7 @@ def run_nodes(world: World, nodes: list[NodeSpec], options: RunOptions, stack: s
         config = write_config(tmp, world, rate=options.rate, duration=options.duration, no_hit=options.no_hit,
                               trace=str(trace_file), start_file=str(start_file), person=options.person,
                               graded=options.robot_ns, record_scans=options.record_scans, stack=stack, domain=domain,
-                              discovery="localhost", expect=len(nodes), cmd_vel=cmd_vel,
+                              discovery={"range": "localhost", "peers": []}, expect=len(nodes), cmd_vel=cmd_vel,
                               pids_file=str(tmp / "pids.json"))
         simulator = supervisor.start("simulator", [sys.executable, "-m", "worldgen.ros2.node", str(config)],
                                      _simulator_env(env), log=tmp / "simulator.log")

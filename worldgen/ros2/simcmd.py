@@ -27,22 +27,20 @@ def domain_id(env=None) -> int:
     return int(text)
 
 
-def discovery_range(env=None) -> str:
-    env = os.environ if env is None else env
-    if env.get("ROS_LOCALHOST_ONLY", "") == "1":
-        return "localhost"
-    value = env.get("ROS_AUTOMATIC_DISCOVERY_RANGE", "")
-    return {"": "subnet", "SYSTEM_DEFAULT": "subnet", "SUBNET": "subnet", "OFF": "localhost"}.get(value, "localhost")
-
-
 def sim(world: World, *, stack: str, cmd_vel: str | None, rate: float, duration: float | None, no_hit: str,
         say: Callable[[str], None] = lambda text: print(text, file=sys.stderr, flush=True)) -> int:
     """Run the ROS 2 simulator on ``world`` (see the module docstring); its exit code (0 after Ctrl-C)."""
     require_cyclonedds()
+    from .participant import Discovery   # cyclonedds is there now
+
     domain = domain_id()
+    discovery = Discovery.from_env()
+    if discovery.range == "off":
+        say("worldgen sim: warning: ROS_AUTOMATIC_DISCOVERY_RANGE=OFF: nodes in this shell reach no other "
+            "process, the simulator included; unset it or set LOCALHOST")
     with tempfile.TemporaryDirectory(prefix="worldgen_sim2_") as tmp, Supervisor() as supervisor:
         config = write_config(Path(tmp), world, rate=rate, duration=duration, no_hit=no_hit, trace=None, stack=stack,
-                              domain=domain, discovery=discovery_range(), cmd_vel=cmd_vel, start_file=None, expect=0)
+                              domain=domain, discovery={"range": discovery.range, "peers": list(discovery.static_peers)}, cmd_vel=cmd_vel, start_file=None, expect=0)
         root = str(Path(__file__).resolve().parents[2])
         env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in (root, os.environ.get("PYTHONPATH")) if p))
         child = supervisor.start("simulator", [sys.executable, "-m", "worldgen.ros2.node", str(config)], env,
