@@ -8,9 +8,27 @@ drives in exactly the scene the parent's checks looked at; the simulation itself
 from __future__ import annotations
 
 import tempfile
+from dataclasses import dataclass
 from pathlib import Path
 
 from ..core.scene import Scene
+
+
+@dataclass(frozen=True)
+class WorldSource:
+    """Where a world comes from: a file, or SDF text built from a spec (``path`` then names the spec's would-be
+    world file, for messages). ``validate`` reads its jobs' worlds through it, the view its LiDAR child's."""
+
+    path: Path
+    text: str | None = None
+
+    def read(self, model_paths=()) -> Scene:
+        """The scene: the file read, or the text read as if it were that file."""
+        from ..sdf.reader import read_world, read_world_text
+
+        if self.text is not None:
+            return read_world_text(self.text, source=self.path, model_paths=tuple(model_paths))
+        return read_world(self.path, model_paths=tuple(model_paths))
 
 
 def load_scene(path: str | Path, kind: str = "world", model_paths=()) -> tuple[Scene, dict | None]:

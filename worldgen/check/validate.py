@@ -35,6 +35,7 @@ from ..core.inputs import check_regular
 from ..core.spawnpose import plan_pose
 from ..core.findings import Finding
 from .report import Result
+from .sources import WorldSource
 from ..spec.load import spec_beside
 from ..spec.model import ROBOT_MODELS, SPEC_SUFFIXES
 
@@ -331,22 +332,6 @@ def _apply_options(job: Job, options: Options) -> Job:
 
 
 # ------------------------------------------------------------------------------------------------------- run
-
-@dataclass(frozen=True)
-class WorldSource:
-    """Where a job's world comes from: a file, or SDF text built from a spec (``path`` then names the spec's
-    would-be world file, for messages)."""
-
-    path: Path
-    text: str | None = None
-
-    def read(self, model_paths):
-        from ..sdf.reader import read_world, read_world_text
-
-        if self.text is not None:
-            return read_world_text(self.text, source=self.path, model_paths=model_paths)
-        return read_world(self.path, model_paths=model_paths)
-
 
 def run_job(job: Job, options: Options) -> list[Result]:
     """Validate one job: read the world, run the geometric checks here and the simulated ones on the same scene

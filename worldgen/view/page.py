@@ -138,7 +138,7 @@ def scan_rays(source, model_paths=(), timeout: float = 120.0) -> list:
     from .preview import Picture, Spawn, lidar_rays
 
     spawn = Spawn(*source.spawn, model=source.robot)
-    picture = Picture(source.scene, source.title, world_path=source.world_path, world_text=source.world_text)
+    picture = Picture(source.scene, source.title, world=source.world)
     return lidar_rays(picture, spawn, model_paths, timeout)
 
 
@@ -173,14 +173,15 @@ def world_source(path: str | Path, scene, spawn=None, robot: str = "burger"):
     import dataclasses
 
     from ..check.validate import input_kind
-    from .scene_data import WorldSource, read_source, static_models, world_title
+    from ..check.sources import WorldSource
+    from .scene_data import ShownWorld, read_source, static_models, world_title
 
     path = Path(path)
     if path.is_file() and input_kind(path) == "spec":
         source = read_source(path)
     else:
-        source = WorldSource(scene, world_title(scene, path), path.name, world_path=str(path),
-                             walls=static_models(scene))
+        source = ShownWorld(scene, world_title(scene, path), path.name, world=WorldSource(path),
+                            walls=static_models(scene))
     return dataclasses.replace(source, spawn=tuple(spawn) if spawn is not None else source.spawn, robot=robot)
 
 

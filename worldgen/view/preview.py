@@ -17,6 +17,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Sequence, Tuple
 
+from ..check.sources import WorldSource
 from ..core.scene import Scene
 from ..spec.load import load_spec
 from ..spec.model import SPEC_SUFFIXES, Spec
@@ -63,8 +64,8 @@ class Picture:
     spawn: Spawn | None = None
     walls: frozenset[str] = frozenset()   # labels of the shapes drawn as walls (the rest are obstacles)
     legend: tuple[str, str] = ("wall", "obstacle")
-    world_path: str | None = None       # where the scene came from, for the LiDAR job:
-    world_text: str | None = None       # a world file, or the SDF text written for a spec
+    world: WorldSource | None = None    # where the scene came from, for the LiDAR job: a world file, or the
+    # SDF text written for a spec
 
 
 def is_spec_path(path: str | Path) -> bool:
@@ -80,7 +81,7 @@ def spec_picture(spec: Spec) -> Picture:
     spawn = Spawn(*source.spawn, spec.robot.model) if spec.robot else None
     walls = frozenset(s.label for s in source.scene.shapes if s.model in source.walls)
     return Picture(source.scene, spec.name, _short(Path(spec.source).name) if spec.source else "",
-                   opening_marks(source.building), spawn, walls, world_text=source.world_text)
+                   opening_marks(source.building), spawn, walls, world=source.world)
 
 
 def opening_marks(building) -> tuple[Mark, ...]:
@@ -105,7 +106,7 @@ def world_picture(path: str | Path, model_paths: Sequence[str | Path] = ()) -> P
     walls = frozenset(s.label for s in scene.shapes if s.static)
     title = f"world '{scene.world_name}'" if scene.world_name else Path(path).name
     return Picture(scene, title, _short(Path(path).name), walls=walls, legend=("static", "movable"),
-                   world_path=str(path))
+                   world=WorldSource(Path(path)))
 
 
 def _shown(text: str) -> str:
@@ -347,19 +348,18 @@ def lidar_rays(pic: Picture, spawn: Spawn, model_paths: Sequence[str | Path] = (
     from ..sim.process import run_isolated
 
     reply = run_isolated(f"{__name__}:scan_rays", {
-        "world": pic.world_path, "world_text": pic.world_text, "model_paths": [str(p) for p in model_paths],
+        "world": str(pic.world.path) if pic.world else None, "world_text": pic.world.text if pic.world else None,
+        "model_paths": [str(p) for p in model_paths],
         "robot": spawn.model, "spawn": [spawn.x, spawn.y, spawn.yaw]}, timeout)
     return [(x0, y0, x1, y1, bool(hit)) for x0, y0, x1, y1, hit in reply["rays"]]
 
 
-def scan_rays(world: str | None, world_text: str | None, model_paths: list[str], robot: str,
-              spawn: list[float]) -> dict:
-    """The child-process side of :func:`lidar_rays` (JSON in, JSON out)."""
-    from ..sdf.reader import read_world, read_world_text
+def scan_rays(world: str, world_text: str | None, model_paths: list[str], robot: str, spawn: list[float]) -> dict:
+    """The child-process side of :func:`lidar_rays` (JSON in, JSON out): ``world`` and ``world_text`` are the
+    picture's :class:`~worldgen.check.sources.WorldSource`."""
     from ..sim.session import Session
 
-    scene = read_world_text(world_text, model_paths=tuple(model_paths)) if world_text is not None else \
-        read_world(world, model_paths=tuple(model_paths))
+    scene = WorldSource(Path(world), world_text).read(model_paths)
     with Session(scene, robot, tuple(spawn), seed=None) as session:
         scan = session.scan(noise=False)
     ox, oy, _, yaw = scan.origin

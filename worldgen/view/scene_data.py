@@ -19,6 +19,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Sequence
 
+from ..check.sources import WorldSource
 from ..core.scene import Scene, Shape
 
 GREY = (0.7, 0.7, 0.7, 1.0)   # Gazebo/Grey: what a visual without a known material looks like
@@ -26,7 +27,7 @@ FLOOR_MARGIN = 3.0            # m of floor drawn around everything built
 
 
 @dataclass
-class WorldSource:
+class ShownWorld:
     """What the page shows, read from the input: the scene, and a spec's building when it came from one."""
 
     scene: Scene
@@ -36,13 +37,12 @@ class WorldSource:
     robot: str = "burger"
     spec: object | None = None        # worldgen.spec.model.Spec
     building: object | None = None    # worldgen.geometry.building.Building
-    world_path: str | None = None     # for the LiDAR job: a world file, or the SDF text written for a spec
-    world_text: str | None = None
+    world: WorldSource | None = None   # for the LiDAR job: a world file, or the SDF text written for a spec
     walls: frozenset = field(default_factory=frozenset)   # models drawn as walls (the rest are obstacles)
     others: tuple = ()   # a launch file's other robots: (namespace, model, (x, y, yaw)) each
 
 
-def read_source(path: str | Path, model_paths: Sequence[str | Path] = ()) -> WorldSource:
+def read_source(path: str | Path, model_paths: Sequence[str | Path] = ()) -> ShownWorld:
     """The world of a spec, a world file or a launch file (its world, spawn pose and robot)."""
     from ..check.validate import input_kind
     from ..core.errors import InputError
@@ -61,13 +61,13 @@ def read_source(path: str | Path, model_paths: Sequence[str | Path] = ()) -> Wor
     return _world_source(path, model_paths)
 
 
-def _spec_source(path: Path, model_paths) -> WorldSource:
+def _spec_source(path: Path, model_paths) -> ShownWorld:
     from ..spec.load import load_spec
 
     return spec_source(load_spec(path), model_paths, path.name)
 
 
-def spec_source(spec, model_paths=(), subtitle: str = "") -> WorldSource:
+def spec_source(spec, model_paths=(), subtitle: str = "") -> ShownWorld:
     """A spec's world as ``worldgen build`` writes it (spec → geometry → SDF text → the reader), with the spec,
     its building, its robot's pose and its walls (the building and an ASCII grid's posts)."""
     from ..geometry.building import build_geometry
@@ -80,16 +80,17 @@ def spec_source(spec, model_paths=(), subtitle: str = "") -> WorldSource:
     scene = read_world_text(text, source=spec.source, model_paths=tuple(model_paths))
     spawn = (spec.robot.at[0], spec.robot.at[1], spec.robot.yaw) if spec.robot else None
     walls = frozenset(m for m in scene.models if m == building.name or m.startswith(POST_PREFIX))
-    return WorldSource(scene, spec.name, subtitle, spawn, spec.robot.model if spec.robot else "burger", spec,
-                       building, world_text=text, walls=walls)
+    where = Path(spec.source).with_suffix(".world") if spec.source else Path(f"{spec.name}.world")
+    return ShownWorld(scene, spec.name, subtitle, spawn, spec.robot.model if spec.robot else "burger", spec,
+                      building, WorldSource(where, text), walls=walls)
 
 
-def _world_source(path: Path, model_paths, title: str | None = None) -> WorldSource:
+def _world_source(path: Path, model_paths, title: str | None = None) -> ShownWorld:
     from ..sdf.reader import read_world
 
     scene = read_world(path, model_paths=tuple(model_paths))
-    return WorldSource(scene, title or world_title(scene, path), path.name, world_path=str(path),
-                       walls=static_models(scene))
+    return ShownWorld(scene, title or world_title(scene, path), path.name, world=WorldSource(path),
+                      walls=static_models(scene))
 
 
 def world_title(scene: Scene, path: Path) -> str:
@@ -102,7 +103,7 @@ def static_models(scene: Scene) -> frozenset:
     return frozenset(s.model for s in scene.shapes if s.static)
 
 
-def _launch_source(path: Path, model_paths) -> WorldSource:
+def _launch_source(path: Path, model_paths) -> ShownWorld:
     import dataclasses
 
     from ..core.errors import InputError
@@ -198,7 +199,7 @@ def _group(shape: Shape, walls: frozenset) -> str:
     return "wall" if shape.model in walls else "obstacle"
 
 
-def world_items(source: WorldSource, meshes: list) -> list[dict]:
+def world_items(source: ShownWorld, meshes: list) -> list[dict]:
     """Every visual of the scene (a model without visuals: its collisions), ground planes left to the page."""
     scene = source.scene
     with_visuals = {s.model for s in scene.visuals}
@@ -228,7 +229,7 @@ def polygon_rings(geometry) -> list[list[list[list[float]]]]:
     return out
 
 
-def plan(source: WorldSource) -> dict:
+def plan(source: ShownWorld) -> dict:
     """The cut at the robot's height: sections (walls and obstacles apart), closed rooms with their names and
     sizes, the bounds of everything built."""
     import shapely
@@ -255,7 +256,7 @@ def plan(source: WorldSource) -> dict:
             "rooms": room_items, "_geometry": everything}
 
 
-def _spec_rooms(source: WorldSource) -> list:
+def _spec_rooms(source: ShownWorld) -> list:
     """Each room of the spec: its name and its floor inside the walls (the centre-line polygon less half the
     walls' thickness)."""
     import shapely
@@ -270,7 +271,7 @@ def _spec_rooms(source: WorldSource) -> list:
     return out
 
 
-def openings(source: WorldSource) -> list[dict]:
+def openings(source: ShownWorld) -> list[dict]:
     """A spec's doors and windows: where they are (centre, along-wall yaw, width × height, sill) and what to call
     them."""
     building = source.building
@@ -291,7 +292,7 @@ def openings(source: WorldSource) -> list[dict]:
     return out
 
 
-def bounds(source: WorldSource, plan_geometry: list, spawns) -> list[float]:
+def bounds(source: ShownWorld, plan_geometry: list, spawns) -> list[float]:
     """xmin, ymin, xmax, ymax of the plan, the floor markings and the robots' spawns (None: none; 2 m around the
     origin when empty)."""
     from ..geometry.markings import floor_markings, footprint
@@ -308,7 +309,7 @@ def bounds(source: WorldSource, plan_geometry: list, spawns) -> list[float]:
             r3(max(b[3] for b in boxes))]
 
 
-def floor(source: WorldSource, box: list[float]) -> dict:
+def floor(source: ShownWorld, box: list[float]) -> dict:
     """The ground the page draws under the world: the scene's ground plane's colour, the bounds and a margin."""
     planes = [s for s in list(source.scene.visuals) + list(source.scene.shapes) if s.kind == "plane"]
     colour = next((s.color for s in planes if s.color is not None), GREY)
@@ -367,7 +368,7 @@ def rays_data(rays) -> list[list]:
     return [[r3(x0), r3(y0), r3(x1), r3(y1), 1 if hit else 0] for x0, y0, x1, y1, hit in rays]
 
 
-def world_data(source: WorldSource, rays=None) -> dict:
+def world_data(source: ShownWorld, rays=None) -> dict:
     """Everything the page draws of a world (see the module docstring)."""
     meshes: list[Shape] = []
     items = world_items(source, meshes)
