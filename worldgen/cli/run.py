@@ -53,16 +53,23 @@ from .transports import transport_for
               help="A 3D page replaying the run (robot, path, scans, cmd_vel and distance plots, findings). With a "
                    "folder of submissions: a folder with an index page and one replay per submission.")
 @click.option("--force", is_flag=True, help="Overwrite existing --plot/--csv/--bag/--junit/--html files.")
+@click.option("--worlds", "worlds_source", default=None, metavar="FOLDER|KIND:COUNT[@SEED]",
+              help="Grade across many worlds, each with its own spawn: a folder of worlds or specs, or COUNT worlds "
+                   "of a `worldgen generate` kind made on the fly (rooms:10, maze:24@100). WORLD is then the first "
+                   "NODE, or a folder of submissions, each meeting the same worlds.")
+@click.option("--min-pass", type=float, default=1.0, show_default=True, metavar="FRACTION",
+              help="With --worlds: the share of the worlds that must pass for exit 0.")
 @ros_option
 @cmd_vel_option
 def run(world, nodes, task, target, duration, rate, spawn, launch_file, robot, robot_ns, folder_world, jobs, shard, fmt,
-        junit, plot, csv_path, bag, html, lidar_no_hit, force, ros, cmd_vel):
+        junit, plot, csv_path, bag, html, lidar_no_hit, force, worlds_source, min_pass, ros, cmd_vel):
     """Run NODE... (a .py file, PKG/TYPE, or a .launch file's nodes; `name:=value` after a node is its argument)
     on the simulated TurtleBot3 in WORLD, with a private ROS master, and report what the robot did. With --task,
     grade it: exit 0 pass, 1 fail.
 
     WORLD may be a folder of submissions (catkin packages): each one's node for --task runs in its own master
-    and gets one result, as `validate` reports files.
+    and gets one result, as `validate` reports files. With --worlds, WORLD is left out: the nodes (or the folder
+    of submissions) run in every world of the source, one line per world, the pass rate against --min-pass.
     """
     from ..core.spawnpose import parse_spawn
     from ..check.discover import parse_shard
@@ -76,6 +83,15 @@ def run(world, nodes, task, target, duration, rate, spawn, launch_file, robot, r
     request = RunRequest(task=task, target=target, duration=duration, rate=parse_rate(rate), no_hit=lidar_no_hit,
                          spawn=parse_spawn(spawn) if spawn is not None else None, robot=robot, launch=launch_file,
                          robot_ns=robot_ns)
+    if worlds_source is not None:
+        given = {"--spawn": spawn, "--launch": launch_file, "--world": folder_world, "--plot": plot, "--csv": csv_path,
+                 "--bag": bag, "--html": html}
+        pairs = (("--task", task), ("--target", target), ("--duration", duration), ("--rate", rate),
+                 ("--robot", robot), ("--lidar-no-hit", None if lidar_no_hit == "inf" else lidar_no_hit),
+                 ("--ros", None if ros == "noetic" else ros), ("--cmd-vel", cmd_vel))
+        flags = [x for f, v in pairs if v is not None for x in (f, f"{v:g}" if isinstance(v, float) else str(v))]
+        _across_worlds(worlds_source, world, nodes, request, transport, jobs, shard_k_n, min_pass, fmt, junit, flags,
+                       given)
     if world.is_dir() and not (world / "model.sdf").is_file() and not (world / "model.config").is_file():
         from ..bridge.grade import grade_folder
 
@@ -114,6 +130,36 @@ def run(world, nodes, task, target, duration, rate, spawn, launch_file, robot, r
     result, text = run_single(world, nodes, request, outputs, transport)
     click.echo(text, nl=False)
     sys.exit(EXIT_OK if result.ok else EXIT_FAILED)
+
+
+def _across_worlds(source: str, first: Path, nodes, request, transport, jobs: int, shard, min_pass: float, fmt: str,
+                   junit: Path | None, flags: list, given: dict) -> None:
+    """``run --worlds SOURCE``: the nodes (or each submission of the folder ``first``) in every world of SOURCE
+    (:mod:`worldgen.bridge.worlds`); exits 0 when the share passed reaches ``min_pass``."""
+    from ..bridge import worlds as across
+    from ..core.errors import InputError
+    from ..core.fsio import write_file
+
+    used = [flag for flag, value in given.items() if value is not None]
+    if used:
+        raise InputError(f"{used[0]} is for one world, and --worlds runs many (each with its own spawn)",
+                         hint=f"leave out {used[0]}, or run one world without --worlds")
+    min_pass = across.check_min_pass(min_pass)
+    folder = first.is_dir()
+    node_args = list(nodes) if folder else [str(first), *nodes]
+    runner = (across.class_runner(first, node_args, request, transport, jobs=jobs, shard=shard) if folder else
+              across.node_runner(node_args, request, transport))
+    rerun = across.rerun_maker([] if folder else node_args, flags)
+    with across.world_items(source) as items:
+        runs = across.across_worlds(items, runner, jobs=1 if folder else jobs,
+                                    progress=lambda r: click.echo(f"[{r.world.name}] "
+                                                                  f"{'ok' if all(x.ok for x in r.results) else 'FAIL'}",
+                                                                  err=True))
+    if junit is not None:
+        write_file(junit, across.worlds_junit(runs), force=True)
+    click.echo(across.worlds_json(runs, min_pass, rerun) if fmt == "json" else
+               across.worlds_text(runs, min_pass, rerun, request.task), nl=False)
+    sys.exit(EXIT_OK if across.worlds_ok(runs, min_pass) else EXIT_FAILED)
 
 
 def _replay_page(nodes):
