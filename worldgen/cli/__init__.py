@@ -1,13 +1,14 @@
 """The ``worldgen`` command: a thin click layer over the library.
 
-Every command lives in a module of this package, named for its job, exposing ``COMMANDS``. Domain errors become
-one line on stderr and exit code 2 (click's own usage errors exit 2 as well); 1 is reserved for "checks ran and
-failed".
+Every command lives in a module of this package, named for its job, exposing ``COMMANDS``. Domain errors and
+click's usage errors (an unknown option or command, a missing argument, a bad value) become one line on stderr and
+exit code 2; 1 is reserved for "checks ran and failed".
 """
 
 from __future__ import annotations
 
 import codecs
+import importlib
 import sys
 
 import click
@@ -39,10 +40,48 @@ def _lenient_streams() -> None:
                 pass
 
 
+_HELP_SHOWN = getattr(click.exceptions, "NoArgsIsHelpError", ())   # click 8.2+: bare `worldgen` shows the help
+
+
+def _usage_line(err: click.UsageError) -> str:
+    """A click usage error as the one line every worldgen error is: what is wrong, and where the help is."""
+    message = " ".join(line.strip() for line in err.format_message().splitlines() if line.strip())
+    command = "worldgen"
+    if err.ctx is not None:
+        root = err.ctx.find_root().info_name or ""
+        command = "worldgen" + err.ctx.command_path[len(root):]
+    return f"worldgen: error: {message} (see '{command} --help')"
+
+
+# command name → the module of this package that defines it (in its COMMANDS): a module is imported only when one
+# of its commands runs (or the group's --help lists them), so `worldgen validate` loads no ROS, view or generator
+COMMAND_MODULES = {"new": "new", "build": "build", "generate": "generate", "preview": "preview", "view": "view",
+                   "launch": "ros", "scaffold": "ros", "course": "ros", "validate": "validate", "drive": "drive",
+                   "sim": "sim", "run": "run", "doctor": "doctor"}
+
+
 class _Group(click.Group):
+    """The command group: domain errors and click's usage errors (a bad option, a missing argument, an unknown
+    command: click would print its four-line usage block) both become one line on stderr and exit code 2."""
+
+    def list_commands(self, ctx: click.Context) -> list[str]:
+        return sorted(set(self.commands) | set(COMMAND_MODULES))
+
+    def get_command(self, ctx: click.Context, name: str):
+        if name not in self.commands and name in COMMAND_MODULES:
+            for command in importlib.import_module(f"{__name__}.{COMMAND_MODULES[name]}").COMMANDS:
+                self.add_command(command)
+        return self.commands.get(name)
+
     def main(self, *args, **kwargs):
         _lenient_streams()
         return super().main(*args, **kwargs)
+
+    def make_context(self, *args, **kwargs):
+        try:
+            return super().make_context(*args, **kwargs)
+        except click.UsageError as err:
+            _usage_exit(err)
 
     def invoke(self, ctx: click.Context):
         try:
@@ -50,6 +89,15 @@ class _Group(click.Group):
         except WorldgenError as err:
             click.echo(f"worldgen: error: {err}", err=True)
             sys.exit(EXIT_BAD_INPUT)
+        except click.UsageError as err:
+            _usage_exit(err)
+
+
+def _usage_exit(err: click.UsageError):
+    if isinstance(err, _HELP_SHOWN):
+        raise err
+    click.echo(_usage_line(err), err=True)
+    sys.exit(EXIT_BAD_INPUT)
 
 
 @click.group(cls=_Group, context_settings={"help_option_names": ["-h", "--help"], "max_content_width": 100})
@@ -57,9 +105,3 @@ class _Group(click.Group):
 def main() -> None:
     """Gazebo worlds for TurtleBot3 classes: build them from text, launch them, check them headless."""
 
-
-from . import build, doctor, drive, generate, new, preview, ros, run, sim, validate, view  # noqa: E402  (each registers its commands)
-
-for _module in (new, build, generate, preview, view, ros, validate, drive, sim, run, doctor):
-    for _command in _module.COMMANDS:
-        main.add_command(_command)
