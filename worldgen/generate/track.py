@@ -2,7 +2,7 @@
 tighter than ``min_radius``, for ``worldgen run --task line-follow``.
 
 The curve is star-shaped round the room's centre: at angle θ its distance is r(θ) = 1 + Σ a_k cos(kθ + φ_k) for
-k = 2, 3, 4 (random a_k, φ_k; r stays between 0.75 and 1.25, so it never crosses itself), stretched to fill the
+k = 2, 3, 4 (random a_k, φ_k; r stays between 0.61 and 1.39, so it never crosses itself), stretched to fill the
 room less :data:`WALL_MARGIN` from each wall. Its curvature is worked out from the exact derivatives of that
 formula at 360 angles; while its tightest bend is tighter than ``min_radius`` (with 10 % to spare) the wobbles
 are damped and it is tried again, down to an ellipse, which :func:`resolve` makes sure is gentle enough. The tape
@@ -32,7 +32,7 @@ SAMPLES = 360          # angles the curve is measured at (a degree apart)
 FINER = (720, 1440, 2880, 4320)   # the tape's angles in a room too big for SAMPLES points 6 cm apart
 SPACING = 0.06         # m: the tape's points are at most this far apart
 SPARE = 1.1            # the tightest bend is kept this much gentler than the limit
-AMPLITUDES = (0.12, 0.08, 0.05)   # the largest a_2, a_3, a_4
+AMPLITUDES = (0.2, 0.12, 0.07)    # the largest a_2, a_3, a_4
 DAMPING = (1.0, 0.6, 0.35, 0.15, 0.0)
 COLOUR_NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_]*(/[A-Za-z0-9_]+)+$")
 
