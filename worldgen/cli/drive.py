@@ -95,6 +95,10 @@ def drive(world, behaviour, robot, spawn, target, kp, ki, kd, duration, max_spee
     for folder in model_paths:
         if not folder.is_dir():
             raise InputError("--model-path is not a folder", path=folder, hint="give a folder of Gazebo models")
+    from .outputs import check_suffix
+
+    check_suffix(plot, "png", "--plot")
+    check_suffix(html, "html", "--html")
     outputs = [p for p in (plot, csv_path, html) if p is not None]
     if html is not None:
         from ..view.page import require_three

@@ -25,6 +25,9 @@ def new(name: str, output: Path | None, template: str, force: bool) -> None:
     from ..core.fsio import write_file
     from ..spec.load import starter_spec
 
+    from .outputs import check_suffix
+
+    check_suffix(output, "yaml", "-o")
     text = starter_spec(name, template)
     path = write_file(output or Path(f"{name}.yaml"), text, force=force)
     click.echo(f"wrote {path}")

@@ -11,6 +11,7 @@ import click
 from ..core.errors import InputError
 from ..core.fsio import check_free, write_file
 from ..spec.model import ROBOT_MODELS
+from .outputs import check_suffix
 
 
 @click.command("preview")
@@ -31,6 +32,7 @@ def preview(source: Path, output: Path | None, spawn: str | None, robot: str | N
     meets at its own height (walls, obstacles; doors and windows of a spec), and where it spawns. A FOLDER is
     drawn as one contact sheet: every world and spec in it side by side, all to one scale, each with its name and
     spawn (worldgen generate's sets, a class's worlds)."""
+    check_suffix(output, "png", "-o")
     if source.is_dir():
         return _sheet(source, output, spawn, lidar, robot, model_paths, force)
     from ..view.preview import Spawn, picture, render

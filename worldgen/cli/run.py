@@ -73,7 +73,9 @@ def run(world, nodes, task, target, duration, rate, spawn, launch_file, robot, r
     """
     from ..core.spawnpose import parse_spawn
     from ..check.discover import parse_shard
+    from .outputs import check_suffix
 
+    check_suffix(plot, "png", "--plot")
     if html is not None:
         from ..view.page import require_three
 

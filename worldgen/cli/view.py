@@ -31,7 +31,10 @@ def view(source: Path, output: Path | None, spawn: str | None, robot: str | None
     from ..core.spawnpose import parse_spawn
     from ..view.page import world_page
 
+    from .outputs import check_suffix
+
     output = output or Path(f"{source.stem}.html")
+    check_suffix(output, "html", "-o")
     check_free([output], force)   # before the work; write_file checks again
     pose = parse_spawn(spawn) if spawn is not None else None
     page = world_page(source, spawn=pose, robot=robot, lidar=lidar, model_paths=model_paths)
