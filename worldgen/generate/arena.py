@@ -8,7 +8,7 @@ centre, each at a random angle and distance (a star-shaped polygon never crosses
 pointing in (by 15° at least), no corner sharper than :data:`MIN_ANGLE`, no wall shorter than :data:`MIN_EDGE` and
 no two walls that do not meet closer than ``min_width``; otherwise drawn again (a right-angled L after :data:`TRIES`
 draws). The robot starts at a random place at least its turning clearance from every wall, facing a wall 1 to 3.3 m
-ahead.
+ahead (another place is drawn, a few times, until one has such a wall).
 """
 
 from __future__ import annotations
@@ -33,6 +33,7 @@ SHARP_COS = sin_cos(PI - MIN_ANGLE)[1]
 REFLEX_COS = sin_cos(MIN_REFLEX - PI)[1]
 TRIES = 200
 AHEAD = (1.0, 3.3)
+SPAWN_TRIES = 12
 Cell = Tuple[int, int]
 
 
@@ -186,14 +187,15 @@ def _free_spot(polygon: Sequence[Point], room_for: float, rng: Rng) -> Point:
 def make(name: str, options: ArenaOptions, space: RobotSpace, rng: Rng) -> Tuple[Spec, str]:
     polygon, candidates = (_right if options.outline == "right" else _free)(options, rng)
     room_for = space.clearance + THICKNESS / 2 + 0.05
-    if candidates:   # the cells' centres of a right-angled arena: each is half a cell from the walls
-        spawn = rng.choice(candidates)
-    else:
-        spawn = _free_spot(polygon, room_for, rng)
     faces = _faces(polygon)
     headings = ((0.0, PI / 2, PI, -PI / 2) if options.outline == "right" else
                 tuple(k * PI / 4 for k in range(-3, 5)))
-    yaw = facing(spawn, headings, space.width / 2 + 0.05, faces, *AHEAD, rng)
+    for _ in range(SPAWN_TRIES):   # a place with a wall square ahead at a distance worth driving
+        # the cells' centres of a right-angled arena are each half a cell from the walls
+        spawn = rng.choice(candidates) if candidates else _free_spot(polygon, room_for, rng)
+        yaw, square = facing(spawn, headings, space.width / 2 + 0.05, faces, *AHEAD, rng)
+        if square:
+            break
     style = WallStyle(THICKNESS, options.wall_height, Material())
     spec = Spec(name=name, style=style, rooms=(Room("arena", tuple(polygon), style),),
                 robot=RobotPose(options.robot, spawn, round(yaw, 4)))

@@ -176,7 +176,7 @@ def make(name: str, options: ClutterOptions, space: RobotSpace, rng: Rng) -> Tup
             misses += 1
     segments = [e for s in placed for o in s.outlines for e in edges_of(o)]
     segments += _disc_edges(placed) + edges_of(floor.corners())
-    yaw = facing(spawn, HEADINGS, space.width / 2 + 0.05, segments, *AHEAD, rng)
+    yaw, _ = facing(spawn, HEADINGS, space.width / 2 + 0.05, segments, *AHEAD, rng)
     style = WallStyle(THICKNESS, options.wall_height, Material())
     obstacles = tuple(ob for i, s in enumerate(placed) for ob in s.obstacles(i))
     spec = Spec(name=name, style=style, rooms=(Room("room", tuple(room.corners()), style),), obstacles=obstacles,

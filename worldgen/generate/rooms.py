@@ -267,5 +267,5 @@ def _faces(r: Rect, spans: List[DoorSpan], obstacles: List[Obstacle]):
 def _spawn(r: Rect, core: Rect, spans: List[DoorSpan], obstacles: List[Obstacle], space: RobotSpace, model: str,
            rng: Rng) -> RobotPose:
     centre = (round(core.centre[0], 2), round(core.centre[1], 2))
-    yaw = facing(centre, HEADINGS, space.width / 2 + 0.05, _faces(r, spans, obstacles), *AHEAD, rng)
+    yaw, _ = facing(centre, HEADINGS, space.width / 2 + 0.05, _faces(r, spans, obstacles), *AHEAD, rng)
     return RobotPose(model, centre, round(yaw, 4))

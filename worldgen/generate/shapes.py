@@ -49,9 +49,6 @@ class Rect:
         """Whether they share area (touching along an edge does not count)."""
         return self.x0 < other.x1 and other.x0 < self.x1 and self.y0 < other.y1 and other.y0 < self.y1
 
-    def contains(self, other: "Rect") -> bool:
-        return self.x0 <= other.x0 and self.y0 <= other.y0 and other.x1 <= self.x1 and other.y1 <= self.y1
-
     def corners(self) -> List[Point]:
         return [(self.x0, self.y0), (self.x1, self.y0), (self.x1, self.y1), (self.x0, self.y1)]
 
@@ -160,18 +157,18 @@ def band_hit(origin: Point, heading: float, half_width: float, segments: Sequenc
 
 
 def facing(origin: Point, headings: Sequence[float], half_width: float, segments: Sequence[Tuple[Point, Point]],
-           near: float, far: float, rng) -> float:
+           near: float, far: float, rng) -> Tuple[float, bool]:
     """A heading from ``headings`` with a wall square across the band ahead (within 0.2 m over the band), between
-    ``near`` and ``far`` away: the first such in a random order; when none has, the one whose nearest wall is
-    closest to halfway between."""
+    ``near`` and ``far`` away: the first such in a random order, and True. When none has: one whose nearest wall
+    is in that range, else the one whose nearest wall is closest to halfway between, and False."""
     reach = []
     for yaw in rng.shuffled(headings):
         lo, hi = band_hit(origin, yaw, half_width, segments)
         if near <= lo and hi <= far and hi - lo <= 0.2:
-            return yaw
+            return yaw, True
         reach.append((yaw, lo))
     middle = (near + far) / 2
-    return min(reach, key=lambda item: (abs(item[1] - middle), item[0]))[0]
+    return min(reach, key=lambda item: (not near <= item[1] <= far, abs(item[1] - middle), item[0]))[0], False
 
 
 def polygon_area(polygon: Sequence[Point]) -> float:
