@@ -64,11 +64,12 @@ def launch_command(world: Path, package: str | None, name: str | None, model: st
     from ..launch.gz_bridge_params import BRIDGE_FILE, bridge_yaml
     from ..launch.writer_xml import default_launch_name, launch_xml, package_name_of, parse_node
     from ..launch.writer_py import default_launch_py_name, launch_py, without_same_params
-    from ..launch.targets import cmd_vel_type
+    from ..launch.targets import check_world_target, cmd_vel_type
     from ..core.spawnpose import floor_pose, parse_spawn
     from ..launch.spawn import spawn_for_world
 
     node_refs = [parse_node(n) for n in nodes]
+    check_world_target(world, ros)
     world_pkg = world.resolve().parent.parent if world.resolve().parent.name == "worlds" else None
     if world_pkg is not None and not (world_pkg / "package.xml").is_file():
         world_pkg = None

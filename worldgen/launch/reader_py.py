@@ -327,8 +327,8 @@ def _include(read: PyRead, action: Action, scope: Scope) -> None:
             read.info.simulator = simulator
             if world_arg in passed:
                 value = passed[world_arg]
-                if world_arg.endswith("_args") and isinstance(value, str):
-                    value = gz_world(value)
+                if world_arg.endswith("_args"):   # gz sim's options apart from the world, known or not
+                    value = gz_world(value) if isinstance(value, str) else _gz_world_unknown(value)
                 if value is not None:
                     world(read, value, f"{base}'s {world_arg}", scope, action.line)
         return
@@ -399,6 +399,15 @@ def _stock_spawn(read: PyRead, target: Unknown, base: str, passed: dict, scope: 
               f"put the package {target.package} in this workspace to read it")
     read.info.robots.append(RobotSpawn(f"{base}", model, None, model if robot_model([model]) == model else None, pose,
                                        line, scope.ns or "/"))
+
+
+def _gz_world_unknown(value):
+    """The world among ``gz sim`` arguments that are not all known (``-r -s -v2 ‹pkg›/worlds/room.sdf``): the same
+    unknown, shown as the world's word alone; other values as they are."""
+    if isinstance(value, Unknown) and value.shown:
+        found = gz_world(value.shown)
+        return value.like(found) if found is not None else None
+    return value
 
 
 def world(read: PyRead, value, what: str, scope: Scope, line: int | None) -> None:
