@@ -191,3 +191,18 @@ def test_a_node_on_the_wall_clock_at_rate_max_is_said(rclpy_python, tag):
                           "--rate", "max"], rclpy_python, tag)
     said = [f for f in doc["findings"] if "do not follow /clock" in f["message"]]
     assert len(said) == 1 and said[0]["severity"] == "info" and "use_sim_time" in said[0]["fix"]
+
+
+@pytest.mark.parametrize("stack, frame", [("humble", "camera_rgb_optical_frame"), ("jazzy", "camera_rgb_frame")])
+def test_the_waffle_pi_camera_reaches_an_rclpy_node(stack, frame, rclpy_python, tmp_path, tag):
+    """640 x 480 rgb8 on camera/image_raw, with camera_info, stamped on the 30 Hz grid of simulated time (that none
+    is dropped is benchmarks/bench_ros2.py's to show, on a quiet machine)."""
+    out = tmp_path / "camera.json"
+    worldgen([str(ROOM), str(NODES / "camera_count.py"), f"_out:={out}", "--robot", "waffle_pi", "--ros", stack,
+              "--duration", "3", "--rate", "1"], rclpy_python, tag)
+    seen = json.loads(out.read_text())
+    assert seen["first"] == {"width": 640, "height": 480, "encoding": "rgb8", "frame": frame, "bytes": 921600}
+    assert seen["info"] > 0 and seen["k"][0] == pytest.approx(530.47, abs=0.01)
+    stamps = sorted(set(seen["stamps"]))
+    assert len(stamps) >= 10
+    assert all(abs(t * 30 - round(t * 30)) < 1e-3 for t in stamps)

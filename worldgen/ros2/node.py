@@ -30,7 +30,7 @@ from ..interface.camera import CameraIO
 from ..interface.loop import Wire, run_loop
 from ..interface.signals import deliver_interrupts, ignore_interrupts, run_main
 from ..interface.robot import PLUGINS, RobotIO
-from ..interface.topics import Qos, camera_topics, clock_every, join, topics
+from ..interface.topics import Qos, camera_topics, clock_every, frame, join, topics
 from ..robots import robot_urdf
 from ..robots.profile import robot_profile
 from ..sim.session import Session
@@ -101,6 +101,9 @@ class DdsCamera:
     def __init__(self, wire: "DdsWire", io: CameraIO, stack: str, ns: str):
         self.wire, self.io, self.every = wire, io, io.every
         table = camera_topics(stack, join(ns, "camera/image_raw"), join(ns, "camera/camera_info"))
+        if stack == "jazzy":   # Gazebo Sim's camera: the link's frame (gz_frame_id), for the Waffle Pi too
+            io.frame_id = frame(io.frame_id.rpartition("/")[0], "camera_rgb_frame") if "/" in io.frame_id else \
+                "camera_rgb_frame"
         self.writers = {key: wire.writer(t.name, t.type, t.qos) for key, t in table.items()}
 
     def publish(self, session, t: float) -> bool:
