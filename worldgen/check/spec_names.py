@@ -104,11 +104,6 @@ def side_name(sides: list, point=None) -> str:
     return "the straight wall of " + " and ".join(n for n, _, _ in sides)
 
 
-def wall_names(spec) -> Dict[int, str]:
-    """Each built wall's index → what the spec calls it (see the module docstring)."""
-    return {index: side_name(sides) for index, sides in wall_sides(spec).items()}
-
-
 _MARKING = re.compile(rf"(?:floor marking )?({MARKINGS_MODEL}/\w+)")
 
 

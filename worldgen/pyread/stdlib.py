@@ -9,7 +9,6 @@ system, runs a program or imports a module.
 
 from __future__ import annotations
 
-import os.path
 import posixpath
 import re
 import string
@@ -413,8 +412,3 @@ def call_named(ctx: Ctx, call: Call):
             return value
     return Unknown(f"{call.name}() is a call worldgen does not follow (launch files are read, never run)",
                    call.line, f"‹{call.name}()›")
-
-
-def is_path_text(value) -> bool:
-    """Whether ``value`` can stand for a path (a string or a pathlib path)."""
-    return isinstance(value, (str, PurePosixPath, os.PathLike))

@@ -138,11 +138,6 @@ class Session:
                 return other.name
         return self.bodies.label(body, point)
 
-    def reset_robot(self) -> None:
-        """Put the robot back at its spawn pose, at rest, wheels at angle 0 and the command at zero (what
-        Gazebo's reset_world does to a model); simulated time keeps running."""
-        self.main.reset()
-
     # -- time ------------------------------------------------------------------------------------------------
 
     def cmd_vel(self, v: float, omega: float = 0.0) -> None:
