@@ -14,7 +14,8 @@ from ..core.findings import Finding
 from ..core.fsio import check_free
 from .metrics import compute
 from .rubrics import DEFAULT_DURATION, person_loop
-from .supervise import Child, Supervisor
+from .logtail import TAIL, amount
+from .supervise import Child, Leftover, Supervisor
 
 
 @dataclass
@@ -139,6 +140,31 @@ def node_findings(nodes: list[NodeSpec], children: list[Child], alive: dict[str,
     return findings
 
 
+def process_findings(nodes: list[NodeSpec], children: list[Child], left: Sequence[Leftover]) -> list[Finding]:
+    """Processes a node left running after the run (a daemon, a child that ignored the stop), which worldgen
+    ended; and a node's output cut to its first and last lines because it printed more than worldgen keeps."""
+    findings = []
+    sources = {n.name: n.source for n in nodes}
+    if len(nodes) == 1:   # the simulator and the master start nothing: what cannot be traced is the node's
+        left = [Leftover(p.owner or nodes[0].name, p.pid, p.cmd) for p in left]
+    for owner in dict.fromkeys(p.owner for p in left):
+        mine = [p for p in left if p.owner == owner]
+        listed = "; ".join(f"pid {p.pid}: {p.cmd}" for p in mine[:5]) + ("; …" if len(mine) > 5 else "")
+        who = f"node {owner}" if owner in sources else (owner or "a process of the run (its node cannot be told)")
+        findings.append(Finding("node", "warning", f"{who} left {len(mine)} process{'es' if len(mine) > 1 else ''} "
+                                                   f"running after the run ({listed}): worldgen ended them",
+                                where=sources.get(owner or ""),
+                                fix="end what the node starts when it shuts down (rospy.on_shutdown, or rclpy's "
+                                    "shutdown); a node's processes must not detach from it (double fork, setsid)"))
+    for spec, child in zip(nodes, children):
+        kept = child.kept()
+        if kept.cut:
+            findings.append(Finding("node", "info", f"node {spec.name} printed {amount(kept.written)}: worldgen "
+                                                    f"kept its first lines and its last {amount(TAIL)}",
+                                    where=spec.source))
+    return findings
+
+
 def parse_duration(value: float | None, task: str | None) -> float:
     if value is not None:
         return float(value)
@@ -158,14 +184,12 @@ def parse_rate(text: str) -> float:
     return value
 
 
-def check_outputs(paths, force: bool) -> None:
-    check_free([p for p in paths if p is not None], force)
-
-
 def outcome_of(trace: dict, nodes: list[NodeSpec], children: list[Child], alive: dict[str, bool],
-               ended_by: Child | None, options: RunOptions, cmd_type: str = "geometry_msgs/Twist") -> Outcome:
+               ended_by: Child | None, options: RunOptions, cmd_type: str = "geometry_msgs/Twist",
+               left: Sequence[Leftover] = ()) -> Outcome:
     """What a run came to, from the simulator's trace: the metrics (each robot's too, when there are several),
-    the launch files' and the nodes' findings, and a run the machine could not finish in time said so."""
+    the launch files' and the nodes' findings, a run the machine could not finish in time, and the processes
+    ``left`` running after it (:attr:`.supervise.Supervisor.left`) said so."""
     outcome = Outcome(compute(trace), trace=trace, logs={c.name: c.output() for c in children})
     if len(trace.get("robots") or []) > 1:   # several robots: each one's numbers, by namespace
         outcome.metrics["robots"] = {r["ns"]: dict(compute(dict(r, timing=trace.get("timing"))), name=r["name"])
@@ -179,6 +203,7 @@ def outcome_of(trace: dict, nodes: list[NodeSpec], children: list[Child], alive:
                             "the machine could not keep the pace in the time allowed",
             fix="grade at a lower --rate, on a less loaded machine, or with fewer runs at once (-j)"))
     outcome.findings += node_findings(nodes, children, alive, outcome.metrics, cmd_type)
+    outcome.findings += process_findings(nodes, children, left)
     return outcome
 
 
