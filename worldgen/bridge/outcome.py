@@ -11,7 +11,6 @@ from typing import Sequence
 
 from ..core.errors import InputError, WorldgenError
 from ..core.findings import Finding
-from ..core.fsio import check_free
 from .metrics import compute
 from .rubrics import DEFAULT_DURATION, person_loop
 from .logtail import TAIL, amount
