@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import json
 import re
+from pathlib import Path
 
 from conftest import CliRunner
 
@@ -45,3 +46,29 @@ def test_the_course_node_passes_across_worlds_and_an_over_tuned_one_fails_most(t
     # the rerun command, as printed, runs that one world alone, with the same verdict
     again = runner.invoke(main, one["rerun"].split()[1:] + ["--format", "json"])
     assert again.exit_code == 1 and json.loads(again.stdout)["total"] == 1
+
+
+def test_every_submission_of_a_class_meets_the_same_worlds(tmp_path, monkeypatch, tag):  # noqa: F811
+    """A folder of submissions with --worlds: each submission in each world, its own pass rate, the failing
+    (submission, world) pairs named with the command that reruns that submission's node there alone."""
+    import shutil
+
+    node = write_course(tmp_path / "course") / "lab_a_stop_at_wall" / "scripts" / "stop_at_wall.py"
+    runner = CliRunner()
+    for name, script in (("ann", node), ("ben", OVER_TUNED)):
+        made = runner.invoke(main, ["scaffold", f"{name}_lab", "rospy", "geometry_msgs", "sensor_msgs", "-p",
+                                    str(tmp_path / "subs")])
+        assert made.exit_code == 0, made.output
+        shutil.copy(script, tmp_path / "subs" / f"{name}_lab" / "scripts" / "stop_at_wall.py")
+    monkeypatch.chdir(tmp_path)
+    result = runner.invoke(main, ["run", "subs/", "--worlds", "arena:2@5", "--task", "stop-at-wall", "--rate", "max",
+                                  "-j", "2", "--min-pass", "0.5", "--format", "json"])
+    assert result.exit_code == 1 and "Traceback" not in result.output, result.output
+    doc = json.loads(result.stdout)
+    marks = {Path(s["path"]).name: (s["passed"], s["total"], s["ok"]) for s in doc["submissions"]}
+    assert marks == {"ann_lab": (2, 2, True), "ben_lab": (0, 2, False)}
+    reruns = sorted(w["rerun"] for w in doc["worlds"] if not w["ok"])
+    assert reruns == [f"worldgen run --worlds arena:1@{s} subs/ben_lab/scripts/stop_at_wall.py --task stop-at-wall "
+                      "--rate max" for s in (5, 6)]
+    refused = runner.invoke(main, ["run", "subs/", "--worlds", "arena:2", "--spawn", "0,0", "--task", "spin"])
+    assert refused.exit_code == 2 and "--spawn is for one world" in refused.output
