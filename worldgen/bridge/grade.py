@@ -77,7 +77,7 @@ def grade_folder(folder: Path, world_path: Path | None, request: RunRequest, tra
     options = request.options(world, record_scans=each is not None)
     planned = {s: _plan(s, task, nodes, python, transport) for s in found}
     missing = many_findings({str(s): p[1] for s, p in planned.items() if not isinstance(p, WorldgenError)}, python,
-                            apt_ros=transport.apt_ros())
+                            naming=transport.naming())
 
     def one(submission: Path) -> Result:
         plan = planned[submission]

@@ -15,6 +15,7 @@ from typing import Mapping, Sequence
 from ..check.report import Result
 from ..core.findings import Finding
 from ..runtime.check import findings, survey
+from ..runtime.naming import Naming
 from .outcome import NodeSpec
 
 
@@ -24,17 +25,17 @@ def python_sources(specs: Sequence[NodeSpec], python: str) -> list[str]:
 
 
 def node_findings(specs: Sequence[NodeSpec], python: str, env: Mapping[str, str] | None = None, *,
-                  apt_ros: bool = False) -> list[Finding]:
-    """The ``runtime`` findings of the nodes ``specs`` (empty: every import is found); ``apt_ros``: name ROS's
-    own apt packages (``ros-noetic-…``) rather than Debian's."""
+                  naming: Naming = Naming()) -> list[Finding]:
+    """The ``runtime`` findings of the nodes ``specs`` (empty: every import is found), packages named as
+    ``naming`` says."""
     sources = python_sources(specs, python)
     if not sources:
         return []
-    return findings(survey(sources, python, env).reports, python, apt_ros)
+    return findings(survey(sources, python, env).reports, python, naming)
 
 
 def many_findings(groups: Mapping[str, Sequence[NodeSpec]], python: str, env: Mapping[str, str] | None = None,
-                  *, apt_ros: bool = False) -> dict[str, list[Finding]]:
+                  *, naming: Naming = Naming()) -> dict[str, list[Finding]]:
     """:func:`node_findings` for several runs (a folder of submissions) with one child process: findings by
     the key of each group."""
     sources = {key: python_sources(specs, python) for key, specs in groups.items()}
@@ -42,7 +43,7 @@ def many_findings(groups: Mapping[str, Sequence[NodeSpec]], python: str, env: Ma
     if not files:
         return {key: [] for key in groups}
     by_file = {Path(r.path).resolve(): r for r in survey(files, python, env).reports}
-    return {key: findings([by_file[Path(f).resolve()] for f in sources[key]], python, apt_ros) for key in groups}
+    return {key: findings([by_file[Path(f).resolve()] for f in sources[key]], python, naming) for key in groups}
 
 
 def blocked_result(path: str, world, found: list[Finding], task: str | None) -> Result:

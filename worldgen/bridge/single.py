@@ -30,7 +30,7 @@ def run_single(world_path: Path, node_args, request: RunRequest, outputs: Output
     if request.robot_ns is not None:
         world = graded_robot(world, request.robot_ns)
     task_context(world, request.task)   # a line-follow world without tape, say: one line before anything starts
-    missing = node_findings(nodes, python, apt_ros=transport.apt_ros())
+    missing = node_findings(nodes, python, naming=transport.naming())
     names = [n.name for n in nodes]
     if missing:
         return _blocked(world_path, world, missing, request.task, o, names)

@@ -7,6 +7,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Sequence
 
+from ..runtime.naming import Naming
 from .outcome import NodeSpec, Outcome, RunOptions
 from .world import World
 
@@ -24,9 +25,9 @@ class Transport:
         before anything starts)."""
         raise NotImplementedError
 
-    def apt_ros(self) -> bool:
-        """Whether missing modules are named as ROS's own apt packages (``ros-noetic-…``) rather than Debian's."""
-        return False
+    def naming(self) -> Naming:
+        """How missing modules' packages are named for this stack (:mod:`worldgen.runtime.naming`)."""
+        return Naming(self.stack)
 
     def resolve_nodes(self, items: Sequence[str], python: str, search: Sequence[str | Path] = ()) -> list[NodeSpec]:
         raise NotImplementedError

@@ -13,6 +13,7 @@ from ..bridge.preflight import node_findings
 from ..bridge.transport import Transport
 from ..bridge.world import World
 from ..core.errors import WorldgenError
+from ..runtime.naming import Naming
 from .nodes import resolve_nodes
 from .rosenv import ENV_PYTHON, SYSTEM_PYTHON, distro_package, import_rospy, node_python
 from .run import run_nodes
@@ -27,8 +28,8 @@ class Ros1(Transport):
         import_rospy()   # InputError naming the package when rospy is missing
         return node_python()
 
-    def apt_ros(self) -> bool:
-        return noetic()
+    def naming(self) -> Naming:
+        return Naming("noetic", apt_ros=noetic())
 
     def resolve_nodes(self, items: Sequence[str], python: str, search: Sequence[str | Path] = ()) -> list[NodeSpec]:
         return resolve_nodes(items, python, search)
@@ -51,7 +52,7 @@ def launch_warnings(launch: Path) -> list[str]:
     says so itself)."""
     try:
         python = node_python()
-        found = node_findings(resolve_nodes([str(launch)], python), python, apt_ros=noetic())
+        found = node_findings(resolve_nodes([str(launch)], python), python, naming=Naming("noetic", noetic()))
     except WorldgenError:
         return []
     return [f"worldgen sim: warning: {f.where}: {f.message}" + (f" (fix: {f.fix})" if f.fix else "")

@@ -59,10 +59,19 @@ def node_python(stack: str) -> str:
                      hint=install_hint(stack))
 
 
+def doctor_python() -> str:
+    """The Python ``worldgen doctor --ros`` checks: the one that runs nodes, or when none imports rclpy, the first
+    that would be tried (so that its report shows rclpy missing)."""
+    for python, _ in candidates():
+        if os.access(python, os.X_OK) and imports_rclpy(python):
+            return python
+    return next((p for p, _ in candidates() if os.access(p, os.X_OK)), sys.executable)
+
+
 def require_cyclonedds() -> None:
     """InputError naming the extra when this Python cannot speak DDS."""
     try:
-        import cyclonedds  # noqa: F401
+        import cyclonedds  # noqa: F401  (whether it imports is the question)
     except ImportError:
         version = f"{sys.version_info[0]}.{sys.version_info[1]}"
         raise InputError(f"worldgen's ROS 2 side needs cyclonedds, which this Python ({version}) does not have",

@@ -30,7 +30,8 @@ from typing import Container, Iterable, Mapping
 from ..core.errors import InputError
 from ..core.findings import Finding
 from .imports import NodeSource, read_node
-from .table import install_hint, provider
+from .naming import Naming
+from .table import provider
 
 TIMEOUT = 60.0   # s for the child to answer (it only reads directories)
 
@@ -175,11 +176,11 @@ def survey(nodes: Iterable[str | Path], python: str, env: Mapping[str, str] | No
     return Survey(version, reports)
 
 
-def findings(reports: Iterable[NodeReport], python: str, noetic: bool = False, skip: Container[str] = ()
+def findings(reports: Iterable[NodeReport], python: str, naming: Naming = Naming(), skip: Container[str] = ()
              ) -> list[Finding]:
     """A ``runtime`` error finding per node that does not parse, and per module a node needs that its Python
     cannot find (but those in ``skip``): the module, the node file and line (``where``), and what to install
-    (``fix``). ``noetic``: name ROS Noetic's packages first."""
+    (``fix``), named as ``naming``'s stack names packages."""
     found: list[Finding] = []
     for report in reports:
         error = report.source.error
@@ -188,7 +189,7 @@ def findings(reports: Iterable[NodeReport], python: str, noetic: bool = False, s
             where = f"{report.path}:{line}" if line else str(report.path)
             if line:
                 found.append(Finding("runtime", "error", f"{report.path.name} does not parse as Python 3, which ROS "
-                                     f"Noetic runs nodes with: {message}", where=where,
+                                     f"{'2' if naming.ros2 else 'Noetic'} runs nodes with: {message}", where=where,
                                      fix=f"make it Python 3 code ({python} -m py_compile {report.path} shows where)"))
             else:
                 found.append(Finding("runtime", "error", f"{report.path.name}: {message}", where=where))
@@ -207,11 +208,11 @@ def findings(reports: Iterable[NodeReport], python: str, noetic: bool = False, s
                                          "then source devel/setup.bash in the shell that runs worldgen"))
                 continue
             known = provider(module)
-            package = known.package(noetic) if known is not None else None
+            package = naming.package(module)
             named = f" ({package})" if package else ""
-            if known is not None and known.debian is None and known.noetic is None:
+            if known is not None and known.python3:
                 message = f"{module} does not exist in Python 3: {site}"
             else:
                 message = f"{module}{named} is not installed for {python}: {site}"
-            found.append(Finding("runtime", "error", message, where=where, fix=install_hint(module, noetic)))
+            found.append(Finding("runtime", "error", message, where=where, fix=naming.hint(module)))
     return found

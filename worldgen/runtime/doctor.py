@@ -22,6 +22,7 @@ from typing import Mapping, Sequence
 
 from ..core.errors import InputError
 from ..core.findings import Finding
+from .naming import ROS2_RUNTIME, Naming
 from .table import provider, runtime_modules
 from .check import OK_STATES, ask, findings, survey
 
@@ -38,11 +39,10 @@ class Row:
     missing: bool = False
     build: bool = False
 
-    def provided_by(self) -> str:
+    def provided_by(self, naming: Naming = Naming()) -> str:
         if self.build:
-            return "your catkin workspace (catkin_make)"
-        known = provider(self.module)
-        return known.shown if known is not None else "– (not known to worldgen)"
+            return "your workspace (colcon build)" if naming.ros2 else "your catkin workspace (catkin_make)"
+        return naming.shown(self.module)
 
     def needed_by(self) -> str:
         if not self.sites:
@@ -62,15 +62,21 @@ class Doctor:
     rows: list[Row]
     findings: list[Finding]
     packages: list[str]
+    naming: Naming = Naming()
 
     @property
     def ok(self) -> bool:
         return not self.findings and not any(r.missing for r in self.rows)
 
     @property
+    def client(self) -> str:
+        """The ROS client library the nodes need: rclpy on ROS 2, rospy on ROS 1."""
+        return "rclpy" if self.naming.ros2 else "rospy"
+
+    @property
     def rospy(self) -> bool | None:
-        """Whether rospy was found (None: no node imports it)."""
-        row = next((r for r in self.rows if r.module == "rospy"), None)
+        """Whether the client library (rospy, or rclpy on ROS 2) was found (None: no node imports it)."""
+        row = next((r for r in self.rows if r.module == self.client), None)
         return None if row is None else not row.missing
 
     @property
@@ -144,17 +150,18 @@ def _apt_has(package: str) -> bool:
     return proc.returncode == 0 and bool(proc.stdout.strip())
 
 
-def _package(module: str, noetic: bool) -> str | None:
+def _package(module: str, naming: Naming) -> str | None:
     """The package apt installs for ``module`` here, if any (a ``*_msgs`` rule's name only when apt has it)."""
     known = provider(module)
-    if known is None or known.worldgen:
+    if not naming.ros2 and (known is None or known.worldgen):
         return None
-    package = known.package(noetic)
-    return package if package and (not known.guessed or _apt_has(package)) else None
+    package = naming.package(module)
+    guessed = (known is None or known.guessed) and not (naming.ros2 and package and package.startswith("ros-"))
+    return package if package and (not guessed or _apt_has(package)) else None
 
 
-def _packages(rows: list[Row], noetic: bool) -> list[str]:
-    return sorted({p for p in (_package(r.module, noetic) for r in rows if r.missing and not r.build) if p})
+def _packages(rows: list[Row], naming: Naming) -> list[str]:
+    return sorted({p for p in (_package(r.module, naming) for r in rows if r.missing and not r.build) if p})
 
 
 def _sort(rows: dict[str, Row]) -> list[Row]:
@@ -162,7 +169,7 @@ def _sort(rows: dict[str, Row]) -> list[Row]:
 
 
 def check_nodes(paths: Sequence[str | Path], python: str, env: Mapping[str, str] | None = None,
-                noetic: bool = False) -> Doctor:
+                naming: Naming = Naming()) -> Doctor:
     """The report for node files and folders (see the module docstring)."""
     files = node_files(paths)
     found = survey(files, python, env)
@@ -171,7 +178,7 @@ def check_nodes(paths: Sequence[str | Path], python: str, env: Mapping[str, str]
     for report in reports:
         needed = report.source.needed()
         for module, state in report.found.items():
-            if provider(module) is None and state in ("stdlib", "local"):
+            if naming.shown(module).startswith("–") and state in ("stdlib", "local"):
                 continue
             row = rows.setdefault(module, Row(module))
             row.sites.append((str(report.path), needed[module].line))
@@ -180,22 +187,23 @@ def check_nodes(paths: Sequence[str | Path], python: str, env: Mapping[str, str]
     for row in rows.values():
         row.sites.sort(key=lambda s: (s[0], s[1]))
     ordered = _sort(rows)
-    packages = _packages(ordered, noetic)
-    filled = {r.module for r in ordered if not r.build and _package(r.module, noetic) in packages}
-    notes = findings(reports, python, noetic, skip=filled)
-    return Doctor(python, found.version, [str(f) for f in files], ordered, notes, packages)
+    packages = _packages(ordered, naming)
+    filled = {r.module for r in ordered if not r.build and _package(r.module, naming) in packages}
+    notes = findings(reports, python, naming, skip=filled)
+    return Doctor(python, found.version, [str(f) for f in files], ordered, notes, packages, naming)
 
 
-def check_machine(python: str, env: Mapping[str, str] | None = None, noetic: bool = False) -> Doctor:
-    """The class runtime on this machine: each of its modules looked up for ``python``."""
-    modules = runtime_modules()
+def check_machine(python: str, env: Mapping[str, str] | None = None, naming: Naming = Naming()) -> Doctor:
+    """The class runtime on this machine (ROS 2's: rclpy and the common messages): each of its modules looked up
+    for ``python``."""
+    modules = list(ROS2_RUNTIME) if naming.ros2 else runtime_modules()
     version, answers = ask(python, os.environ if env is None else env, [[None, [], modules]])
     rows = {}
     for module in modules:
         state = answers[0].get(module)
         rows[module] = Row(module, missing=state not in OK_STATES)
     ordered = _sort(rows)
-    return Doctor(python, version, [], ordered, [], _packages(ordered, noetic))
+    return Doctor(python, version, [], ordered, [], _packages(ordered, naming), naming)
 
 
 def to_text(doc: Doctor) -> str:
@@ -204,9 +212,10 @@ def to_text(doc: Doctor) -> str:
         lines = [f"worldgen doctor: {len(doc.nodes)} node file(s), for {doc.python} (Python {doc.version})"]
     else:
         lines = [f"worldgen doctor: the class runtime, for {doc.python} (Python {doc.version}), which runs the nodes; "
-                 + ("rospy found" if doc.rospy else "rospy MISSING: no node can run")]
-    table = [["module", "needed by", "provided by (Debian / ROS Noetic)", "state"]]
-    table += [[r.module, r.needed_by(), r.provided_by(), "MISSING" if r.missing else "ok"] for r in doc.rows]
+                 + (f"{doc.client} found" if doc.rospy else f"{doc.client} MISSING: no node can run")]
+    table = [["module", "needed by", doc.naming.column, "state"]]
+    table += [[r.module, r.needed_by(), r.provided_by(doc.naming), "MISSING" if r.missing else "ok"]
+              for r in doc.rows]
     widths = [max(len(row[i]) for row in table) for i in range(4)]
     lines += ["  ".join(c.ljust(w) for c, w in zip(row, widths)).rstrip() for row in table]
     if doc.findings:
@@ -231,7 +240,7 @@ def to_json(doc: Doctor) -> str:
         modules.append({"module": row.module, "state": "MISSING" if row.missing else "ok",
                         "needed_by": [{"file": f, "line": n} for f, n in row.sites],
                         "debian": known.debian if known else None, "noetic": known.noetic if known else None,
-                        "provided_by": row.provided_by()})
+                        "provided_by": row.provided_by(doc.naming)})
     doc_json = {"ok": doc.ok, "python": doc.python, "python_version": doc.version, "rospy": doc.rospy,
                 "nodes": doc.nodes,
                 "modules": modules, "findings": [f.to_dict() for f in doc.findings], "install": doc.install,
