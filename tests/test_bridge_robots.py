@@ -47,7 +47,7 @@ def two_robot_launch(folder):
 
 @pytest.fixture(scope="module")
 def sim(tmp_path_factory):
-    need_ros()
+    need_ros()   # at a fixed pace: the probe drives by its own clock (at --rate max 2 runs of 3 failed)
     tmp = tmp_path_factory.mktemp("robots")
     launch = two_robot_launch(tmp)
     env = ros_env(tmp)

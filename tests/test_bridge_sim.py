@@ -21,7 +21,8 @@ from rosstubs import start_roscore, stop_process
 
 @pytest.fixture(scope="module")
 def running_sim(tmp_path_factory):
-    """`worldgen sim` on the class room at 4x real time, with the master it started itself."""
+    """`worldgen sim` on the class room at 4x real time (a fixed pace: the probes measure rates and drive by the
+    clock), with the master it started itself."""
     need_ros()
     env = ros_env(tmp_path_factory.mktemp("sim"))
     proc = worldgen(["sim", str(ROOM), "--rate", "4"], env)
@@ -122,9 +123,17 @@ def test_sigterm_stops_everything(tmp_path):
     env = ros_env(tmp_path)
     proc = worldgen(["sim", str(ROOM), "--rate", "max"], env)
     wait_master(env, proc)
+    expected = ("-m worldgen sim ", "rosmaster", "-m worldgen.ros1.node ")   # worldgen, the master, the simulator
+
+    def seen() -> list[str]:
+        running = leftovers(env)
+        return [name for name in expected if any(name in p for p in running)]
+
     deadline = time.monotonic() + 20
-    while len(leftovers(env)) < 3 and time.monotonic() < deadline:   # worldgen, rosmaster, the simulator node
+    while seen() != list(expected) and time.monotonic() < deadline:
         time.sleep(0.05)
+    assert seen() == list(expected), leftovers(env)
     proc.send_signal(signal.SIGTERM)
     proc.communicate(timeout=30)
+    assert proc.returncode == 0   # SIGTERM is a stop asked for, as Ctrl-C is
     no_leftovers(env)

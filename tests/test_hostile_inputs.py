@@ -1,9 +1,17 @@
 """Property-based: structured but hostile specs, worlds and launch files (hypothesis) never break the contract.
 
-Whatever the document, ``worldgen build``/``validate --skip-sim`` ends with exit 0 or 1 and a verdict, or exit 2
-and exactly one line on stderr; never a traceback (an exception escaping the CLI), and nothing written on exit 2.
-Examples are derived from a fixed seed (``derandomize``) and bounded in number, so the file runs in well under a
-minute and the same way every time.
+Every document falls in one class, and each class has its exit code:
+
+* the library refuses it with a WorldgenError (a spec that does not load or build; a world or launch file
+  ``validate`` cannot plan): bad input, exit 2, exactly one ``worldgen: error:`` line on stderr, nothing written;
+* the library reads it and every result passes (a spec that builds always does): exit 0, the report on stdout;
+* the library reads it and a result fails (a check found an error): exit 1, the report on stdout.
+
+Never an exception of another kind (a traceback). The work is in the library, so each property runs there on
+many examples (:func:`exit_class` is the class); the command line adds the exit code, the one line and the files,
+so each property also runs through it on a few examples, which must exit with their class's code.
+Examples are derived from a fixed seed (``derandomize``) and bounded in number, so the file runs the same way every
+time.
 """
 
 from __future__ import annotations
@@ -12,32 +20,69 @@ import itertools
 import os
 
 import pytest
-from conftest import CliRunner
+from conftest import EXAMPLES, CliRunner
+from test_drive import ROOM   # a 3 × 3 m room of four walls
 
 hypothesis = pytest.importorskip("hypothesis")
-from hypothesis import HealthCheck, given, settings  # noqa: E402
+from hypothesis import HealthCheck, event, given, settings  # noqa: E402
 from hypothesis import strategies as st  # noqa: E402
 
+from worldgen.check.validate import Options, validate  # noqa: E402
 from worldgen.cli import main  # noqa: E402
+from worldgen.core.errors import EXIT_BAD_INPUT, EXIT_FAILED, EXIT_OK, WorldgenError  # noqa: E402
+from worldgen.core.spawnpose import parse_spawn  # noqa: E402
+from worldgen.geometry.building import build_geometry  # noqa: E402
+from worldgen.sdf.writer import planned_files  # noqa: E402
+from worldgen.spec.load import load_spec  # noqa: E402
 
-# HYPO_N=600 HYPO_RANDOM=1 explores more, and differently each run
-SETTINGS = settings(max_examples=int(os.environ.get("HYPO_N", "150")), deadline=None,
-                    derandomize=not os.environ.get("HYPO_RANDOM"), database=None,
-                    suppress_health_check=list(HealthCheck))
+# HYPO_N=600 HYPO_RANDOM=1 explores more, and differently each run (HYPO_CLI_N: the command line's examples)
+_COMMON = dict(deadline=None, derandomize=not os.environ.get("HYPO_RANDOM"), database=None,
+               suppress_health_check=list(HealthCheck))
+SETTINGS = settings(max_examples=int(os.environ.get("HYPO_N", "150")), **_COMMON)
+CLI_SETTINGS = settings(max_examples=int(os.environ.get("HYPO_CLI_N", "3")), **_COMMON)
 _counter = itertools.count()
 
 
-def holds_contract(result, written) -> None:
-    """Exit 0/1 with a verdict on stdout, or exit 2 with one ``worldgen: error:`` line and nothing written."""
+def exit_class(work, record: bool = True) -> int:
+    """The exit code the command line owes a document, from what the library does with it (``work()`` returns
+    the results): 2 when the library refuses it with a WorldgenError (whose message is one line), else 0 when every
+    result passes, 1 when one fails. Any other exception fails the test. ``record``: count the class in
+    hypothesis' statistics (``--hypothesis-show-statistics``)."""
+    try:
+        results = work()
+    except WorldgenError as err:
+        assert len(str(err).splitlines()) == 1, str(err)
+        code = EXIT_BAD_INPUT
+    else:
+        code = EXIT_OK if all(r.ok for r in results) else EXIT_FAILED
+    if record:
+        event(f"exit {code}")
+    return code
+
+
+def holds_contract(result, written, expected: int) -> None:
+    """The command exits with its document's class's code: 0/1 with a report on stdout, or 2 with one
+    ``worldgen: error:`` line and nothing written; never an exception escaping it."""
     assert result.exception is None or isinstance(result.exception, SystemExit), repr(result.exception)
     assert "Traceback" not in result.output
-    assert result.exit_code in (0, 1, 2), result.output
-    if result.exit_code == 2:
+    assert result.exit_code == expected, (expected, result.output)
+    if result.exit_code == EXIT_BAD_INPUT:
         lines = result.stderr.strip().splitlines()
         assert len(lines) == 1 and lines[0].startswith("worldgen: error: "), result.stderr
         assert not written(), "exit 2 but something was written"
     else:
-        assert result.stdout.strip(), "a verdict"
+        assert result.stdout.strip(), "a report"
+
+
+def build_spec(spec):
+    """``worldgen build SPEC``'s work, without writing: no results to fail, so 0 or 2."""
+    planned_files(build_geometry(load_spec(spec)), spec.parent / "out")
+    return []
+
+
+def validate_skip_sim(path, spawn: list[str]):
+    """``worldgen validate --skip-sim [--spawn X,Y[,YAW]] PATH``'s results."""
+    return validate([path], Options(skip_sim=True, spawn=parse_spawn(spawn[1]) if spawn else None))
 
 
 # ------------------------------------------------------------------------------------------------- spec YAML
@@ -79,15 +124,26 @@ spec_text = st.builds(lambda first, rest: first + "".join(rest),
                       st.lists(line, max_size=6))
 
 
+def _spec(tmp_path_factory, text):
+    spec = tmp_path_factory.mktemp("spec") / "t.yaml"
+    spec.write_text(text, encoding="utf-8")
+    return spec
+
+
 @SETTINGS
 @given(text=spec_text)
-def test_any_spec_gets_a_verdict_or_one_line(tmp_path_factory, text):
-    folder = tmp_path_factory.mktemp("spec")
-    spec = folder / "t.yaml"
-    spec.write_text(text, encoding="utf-8")
-    out = folder / f"out{next(_counter)}"
+def test_any_spec_builds_or_is_refused(tmp_path_factory, text):
+    assert exit_class(lambda: build_spec(_spec(tmp_path_factory, text))) in (EXIT_OK, EXIT_BAD_INPUT)
+
+
+@CLI_SETTINGS
+@given(text=spec_text)
+def test_build_exits_with_the_specs_class(tmp_path_factory, text):
+    spec = _spec(tmp_path_factory, text)
+    expected = exit_class(lambda: build_spec(spec))
+    out = spec.parent / f"out{next(_counter)}"
     result = CliRunner().invoke(main, ["build", str(spec), "-o", str(out)])
-    holds_contract(result, lambda: out.exists() and any(out.iterdir()))
+    holds_contract(result, lambda: out.exists() and any(out.iterdir()), expected)
 
 
 # ------------------------------------------------------------------------------------------------- world XML
@@ -148,18 +204,32 @@ world_text = st.builds(
     st.sampled_from(["", "\n", "<", "&e;", "]]>", "<sdf/>", "\x00"]))
 
 
-@SETTINGS
-@given(text=world_text, spawn=st.sampled_from([[], ["--spawn", "0,0"], ["--spawn", "1e6,-1e6,3"]]),
-       stl=st.sampled_from(MESH_FILES), obj=st.sampled_from(MESH_FILES))
-def test_any_world_gets_a_verdict_or_one_line(tmp_path_factory, text, spawn, stl, obj):
+SPAWNS = st.sampled_from([[], ["--spawn", "0,0"], ["--spawn", "1e6,-1e6,3"]])
+
+
+def _world(tmp_path_factory, text, stl, obj):
     folder = tmp_path_factory.mktemp("world")
     (folder / "m.stl").write_bytes(stl)
     (folder / "m.obj").write_bytes(obj)
     path = folder / "w.world"
     path.write_bytes(text.encode("utf-8", "surrogatepass"))
-    junit = folder / "report.xml"
+    return path
+
+
+@SETTINGS
+@given(text=world_text, spawn=SPAWNS, stl=st.sampled_from(MESH_FILES), obj=st.sampled_from(MESH_FILES))
+def test_any_world_is_judged_or_refused(tmp_path_factory, text, spawn, stl, obj):
+    exit_class(lambda: validate_skip_sim(_world(tmp_path_factory, text, stl, obj), spawn))
+
+
+@CLI_SETTINGS
+@given(text=world_text, spawn=SPAWNS, stl=st.sampled_from(MESH_FILES), obj=st.sampled_from(MESH_FILES))
+def test_validate_exits_with_the_worlds_class(tmp_path_factory, text, spawn, stl, obj):
+    path = _world(tmp_path_factory, text, stl, obj)
+    expected = exit_class(lambda: validate_skip_sim(path, spawn))
+    junit = path.parent / "report.xml"
     result = CliRunner().invoke(main, ["validate", "--skip-sim", *spawn, "--junit", str(junit), str(path)])
-    holds_contract(result, junit.exists)
+    holds_contract(result, junit.exists, expected)
 
 
 # ------------------------------------------------------------------------------------------------ launch XML
@@ -199,13 +269,54 @@ launch_text = st.builds(lambda body, tail: f"<launch>{''.join(body)}</launch>{ta
                         st.lists(launch_element(), max_size=6), st.sampled_from(["", "<", "<launch/>"]))
 
 
-@SETTINGS
-@given(text=launch_text)
-def test_any_launch_file_gets_a_verdict_or_one_line(tmp_path_factory, text):
+def _launch(tmp_path_factory, text):
     folder = tmp_path_factory.mktemp("launch")
     (folder / "w.world").write_text("<sdf version='1.6'><world name='w'/></sdf>")
     path = folder / "t.launch"
     path.write_text(text, encoding="utf-8")
-    junit = folder / "report.xml"
+    return path
+
+
+@SETTINGS
+@given(text=launch_text)
+def test_any_launch_file_is_judged_or_refused(tmp_path_factory, text):
+    exit_class(lambda: validate_skip_sim(_launch(tmp_path_factory, text), []))
+
+
+@CLI_SETTINGS
+@given(text=launch_text)
+def test_validate_exits_with_the_launch_files_class(tmp_path_factory, text):
+    path = _launch(tmp_path_factory, text)
+    expected = exit_class(lambda: validate_skip_sim(path, []))
+    junit = path.parent / "report.xml"
     result = CliRunner().invoke(main, ["validate", "--skip-sim", "--junit", str(junit), str(path)])
-    holds_contract(result, junit.exists)
+    holds_contract(result, junit.exists, expected)
+
+
+# ------------------------------------------------------------------------------------- one document per class
+
+EMPTY_WORLD = "<sdf version='1.6'><world name='w'></world></sdf>"
+
+
+@pytest.mark.parametrize("kind, text, args, code", [
+    ("spec", (EXAMPLES / "enclosed_room.yaml").read_text(), [], EXIT_OK),   # a spec that builds
+    ("spec", "rooms: [", [], EXIT_BAD_INPUT),                               # one that does not load
+    ("world", ROOM, [], EXIT_OK),                                           # a closed room: every check passes
+    ("world", EMPTY_WORLD, [], EXIT_FAILED),                                # no walls round the spawn: one fails
+    ("world", ROOM, ["--spawn", "nan,0"], EXIT_BAD_INPUT),                  # a spawn that is no pose
+    ("launch", "<launch><arg name='x' default='1'/></launch>", [], EXIT_OK),   # it starts no world: passes
+    ("launch", "<launch>", [], EXIT_FAILED),                                # it does not parse: a failed row
+])
+def test_each_class_has_its_exit_code(tmp_path, kind, text, args, code):
+    """The library's class of each document, and the command's exit code, are the ones the docstring gives."""
+    path = tmp_path / {"spec": "t.yaml", "world": "w.world", "launch": "t.launch"}[kind]
+    path.write_text(text, encoding="utf-8")
+    if kind == "spec":
+        assert exit_class(lambda: build_spec(path), record=False) == code
+        out = tmp_path / "out"
+        holds_contract(CliRunner().invoke(main, ["build", str(path), "-o", str(out)]), out.exists, code)
+    else:
+        assert exit_class(lambda: validate_skip_sim(path, args), record=False) == code
+        junit = tmp_path / "report.xml"
+        result = CliRunner().invoke(main, ["validate", "--skip-sim", *args, "--junit", str(junit), str(path)])
+        holds_contract(result, junit.exists, code)

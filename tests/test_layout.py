@@ -7,6 +7,7 @@ dependency, only a cheaper one. The build path's import-time closure is checked 
 from __future__ import annotations
 
 import ast
+import functools
 import json
 import subprocess
 import sys
@@ -86,6 +87,7 @@ def _imports(path: Path, top_level_only: bool = False) -> set[str]:
     return {m if m.startswith("worldgen") else m.split(".")[0] for m in found if m}
 
 
+@functools.lru_cache(maxsize=None)   # read once per session: every test below walks the same graph
 def graph(top_level_only: bool = False) -> dict[str, set[str]]:
     modules = {module_name(p): p for p in PACKAGE.rglob("*.py")}
     return {name: {m for m in _imports(path, top_level_only) if m in modules or not m.startswith("worldgen")}
