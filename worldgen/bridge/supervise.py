@@ -1,13 +1,27 @@
-"""Child processes that never outlive us: each started in a process group of its own, its output captured to a
-file, stopped with its whole group (SIGINT, as roslaunch does, then SIGTERM, then SIGKILL).
+"""Child processes that never outlive us: each started in a process group of its own below a keeper process, its
+output captured to a file and read back bounded, stopped with its whole group (SIGINT, as roslaunch does, then
+SIGTERM, then SIGKILL), and whatever it left behind ended with it.
 
-:class:`Supervisor` keeps every process it started and stops them all in :meth:`Supervisor.stop_all`, which the
-``with`` block calls on any exit — a normal end, an exception, Ctrl-C. While a supervisor is active, SIGTERM and
-SIGHUP to this process raise :class:`KeyboardInterrupt`, so a killed parent still stops its children.
+How nothing outlives a run, even a node's daemon (double fork, setsid) or a node ignoring SIGTERM, even when
+worldgen is killed with SIGKILL: a :class:`Supervisor` starts its children through a keeper (:mod:`.keeper`), a
+small process that is a child subreaper, so every process the run starts, however it detaches, stays below the
+keeper. :meth:`Supervisor.stop_all` stops each child's group as before, then has the keeper sweep whatever is still
+below it (SIGTERM, then SIGKILL): those processes are the run's leftovers (:attr:`Supervisor.left`, each traced to
+the child it came from, for the run's report). The keeper lives in a session of its own and outlives worldgen: if
+worldgen dies (SIGKILL too), the keeper's request pipe closes and it ends the lot itself.
+
+Process-wide state only around the work: while a supervisor is active (its ``with`` block, in the main thread),
+SIGTERM and SIGHUP to this process raise :class:`KeyboardInterrupt`, so a killed parent still stops its children;
+on leaving the block the handlers of SIGTERM, SIGHUP and SIGINT are put back as they were (a caller that ignored
+Ctrl-C while stopping gets Ctrl-C back).
+
+A child's output is kept bounded however much it prints (:mod:`.logtail`): :meth:`Child.output` holds its first
+lines and its last megabyte, with one line saying how much was left out.
 """
 
 from __future__ import annotations
 
+import json
 import os
 import signal
 import subprocess
@@ -17,35 +31,133 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from ..core.errors import WorldgenError
+from .logtail import Kept, read_kept
+
 STOP_GRACE = 3.0   # s after SIGINT before SIGTERM, and after SIGTERM before SIGKILL
-PR_SET_PDEATHSIG = 1
+SWEEP_GRACE = 1.0  # s a leftover gets between SIGTERM and SIGKILL
+ANSWER_TIMEOUT = 30.0
+BOOT = "import sys; sys.path.insert(0, sys.argv[1]); from worldgen.bridge.keeper import main; main()"
 
 
-def _libc():
-    try:
-        import ctypes
+class Process:
+    """A process the keeper started, as far as the runs use a Popen: its ``pid``, ``returncode`` (None while it
+    runs; minus the signal that ended it), :meth:`poll` and :meth:`wait`."""
 
-        return ctypes.CDLL(None, use_errno=True)
-    except (OSError, AttributeError):
-        return None
+    def __init__(self, pid: int, link: KeeperLink):
+        self.pid = pid
+        self.returncode: int | None = None
+        self._link = link
+
+    def poll(self) -> int | None:
+        return self.returncode
+
+    def wait(self, timeout: float | None = None) -> int:
+        with self._link.changed:
+            if not self._link.changed.wait_for(lambda: self.returncode is not None, timeout):
+                raise subprocess.TimeoutExpired(str(self.pid), timeout)
+        return self.returncode
 
 
-_LIBC = _libc() if sys.platform.startswith("linux") else None
+class KeeperLink:
+    """worldgen's end of one keeper: the requests it sends, the answers and exits a reader thread receives."""
 
+    def __init__(self):
+        root = str(Path(__file__).resolve().parents[2])
+        self.proc = subprocess.Popen([sys.executable, "-I", "-S", "-c", BOOT, root], stdin=subprocess.PIPE,
+                                     stdout=subprocess.PIPE, start_new_session=True)
+        self.changed = threading.Condition()
+        self._answers: dict[str, dict] = {}
+        self._processes: dict[int, Process] = {}
+        self._count = 0
+        self._writing = threading.Lock()
+        self.gone = False
+        self._reader = threading.Thread(target=self._read, name="worldgen-keeper", daemon=True)
+        self._reader.start()
 
-def _die_with_parent() -> None:
-    """In the child, before exec: Linux sends it SIGTERM when the thread that started it dies, so that even a
-    parent killed with SIGKILL leaves no orphan."""
-    if _LIBC is not None:
-        _LIBC.prctl(PR_SET_PDEATHSIG, signal.SIGTERM, 0, 0, 0)
+    def _read(self) -> None:
+        for line in self.proc.stdout:
+            try:
+                message = json.loads(line)
+            except ValueError:
+                continue
+            with self.changed:
+                if "exit" in message:
+                    process = self._processes.pop(message["exit"], None)
+                    if process is not None:
+                        process.returncode = message["code"]
+                else:
+                    if "pid" in message:   # registered before its exit can come (one pipe, in order)
+                        message["process"] = self._processes[message["pid"]] = Process(message["pid"], self)
+                    self._answers[message["reply"]] = message
+                self.changed.notify_all()
+        with self.changed:   # the keeper is gone, and its children with it (their parent-death signal)
+            self.gone = True
+            for process in self._processes.values():
+                process.returncode = -signal.SIGKILL
+            self.changed.notify_all()
+
+    def ask(self, request: dict) -> dict:
+        """Send ``request`` and wait for its answer."""
+        with self.changed:
+            self._count += 1
+            key = str(self._count)
+        data = (json.dumps(dict(request, id=key)) + "\n").encode()
+        try:
+            with self._writing:
+                self.proc.stdin.write(data)
+                self.proc.stdin.flush()
+        except (OSError, ValueError):
+            raise WorldgenError("worldgen's process keeper has ended", hint="please report this to the worldgen "
+                                                                             "developers") from None
+        with self.changed:
+            self.changed.wait_for(lambda: key in self._answers or self.gone, ANSWER_TIMEOUT)
+            if key not in self._answers:
+                raise WorldgenError("worldgen's process keeper did not answer",
+                                    hint="please report this to the worldgen developers")
+            answer = self._answers.pop(key)
+        return dict(answer, id=key)
+
+    def start(self, argv: list[str], env: dict[str, str], log: Path | None, cwd, show_errors: bool
+              ) -> tuple[str, Process]:
+        """Start ``argv`` below the keeper: the request's id and the process; OSError as Popen raises it."""
+        answer = self.ask({"op": "start", "argv": [str(a) for a in argv], "env": dict(env),
+                           "cwd": str(cwd) if cwd is not None else None, "log": str(log) if log else None,
+                           "show_errors": show_errors})
+        if "error" in answer:
+            number, text, name = answer["error"]
+            if number is None:
+                raise subprocess.SubprocessError(text)
+            raise OSError(number, text, name) if name is not None else OSError(number, text)
+        return answer["id"], answer["process"]
+
+    def sweep(self, grace: float) -> list[dict]:
+        """End every process still below the keeper (see :mod:`.keeper`); what was ended."""
+        if self.gone:
+            return []
+        return self.ask({"op": "sweep", "grace": grace})["ended"]
+
+    def close(self) -> None:
+        """Let the keeper go (it sweeps once more, then exits) and wait for it."""
+        try:
+            self.proc.stdin.close()
+        except OSError:
+            pass
+        try:
+            self.proc.wait(timeout=30)
+        except subprocess.TimeoutExpired:
+            self.proc.kill()
+            self.proc.wait()
+        self._reader.join(timeout=5)
+        self.proc.stdout.close()
 
 
 @dataclass
 class Child:
-    """One started process: what it is called in reports, its Popen, and the file holding its output."""
+    """One started process: what it is called in reports, its process, and the file holding its output."""
 
     name: str
-    proc: subprocess.Popen
+    proc: Process
     log: Path | None
     stopped_by_us: bool = False
     last: bool = False   # stopped after every other child (a master outlives its nodes)
@@ -54,22 +166,31 @@ class Child:
     def running(self) -> bool:
         return self.proc.poll() is None
 
+    def kept(self) -> Kept:
+        """Its output so far, bounded (see :mod:`.logtail`), with how much it wrote and how much was left out."""
+        return read_kept(self.log) if self.log is not None else Kept("", 0, 0)
+
     def output(self) -> str:
-        if self.log is None:
-            return ""
-        try:
-            return self.log.read_text(encoding="utf-8", errors="replace")
-        except OSError:
-            return ""
+        return self.kept().text
 
     def says(self, text: str) -> bool:
-        """Whether its output so far holds ``text``."""
+        """Whether its output so far holds ``text`` (in the kept part)."""
         return text in self.output()
 
     def last_error_line(self) -> str:
         """The last non-empty line of its output (a traceback's last line says what went wrong)."""
         lines = [ln.strip() for ln in self.output().splitlines() if ln.strip()]
         return lines[-1] if lines else ""
+
+
+@dataclass(frozen=True)
+class Leftover:
+    """A process still running when its run ended, which the run ended: the child it came from (None when it
+    cannot be told), its pid and command line."""
+
+    owner: str | None
+    pid: int
+    cmd: str
 
 
 def _group_alive(pgid: int) -> bool:
@@ -80,7 +201,7 @@ def _group_alive(pgid: int) -> bool:
         return False
 
 
-def stop_group(proc: subprocess.Popen, grace: float = STOP_GRACE) -> None:
+def stop_group(proc, grace: float = STOP_GRACE) -> None:
     """Stop ``proc`` and everything in its process group: SIGINT, then SIGTERM, then SIGKILL, each given
     ``grace`` seconds; the leader is reaped."""
     pgid = proc.pid
@@ -116,26 +237,35 @@ def stop_everything() -> None:
         supervisor.stop_all(grace=1.0)
 
 
+def _interrupt(signum, frame):
+    raise KeyboardInterrupt(f"signal {signum}")
+
+
 @dataclass(eq=False)
 class Supervisor:
-    """Starts processes in their own groups and stops every one of them on exit (see the module docstring)."""
+    """Starts processes in their own groups below a keeper and stops every one of them, and all they started, on
+    exit (see the module docstring). :attr:`left`: the processes found still running at the end, and ended."""
 
     children: list[Child] = field(default_factory=list)
+    left: list[Leftover] = field(default_factory=list)
     _old: dict = field(default_factory=dict)
+    _link: KeeperLink | None = None
+    _names: dict = field(default_factory=dict)   # keeper request id → child name
+    _lock: threading.Lock = field(default_factory=threading.Lock)
+
+    def _keeper(self) -> KeeperLink:
+        with self._lock:
+            if self._link is None:
+                self._link = KeeperLink()
+            return self._link
 
     def start(self, name: str, argv: list[str], env: dict[str, str], log: Path | None = None,
               cwd: str | Path | None = None, show_errors: bool = False, last: bool = False) -> Child:
         """Start ``argv`` in a new process group; its output goes to ``log`` (None: nowhere; with
         ``show_errors``, stderr stays ours)."""
-        out = open(log, "wb") if log is not None else subprocess.DEVNULL
-        try:
-            proc = subprocess.Popen(argv, env=env, cwd=cwd, stdin=subprocess.DEVNULL, stdout=out,
-                                    stderr=None if show_errors else subprocess.STDOUT, start_new_session=True,
-                                    preexec_fn=_die_with_parent if _LIBC is not None else None)
-        finally:
-            if log is not None:
-                out.close()
+        key, proc = self._keeper().start(argv, env, log, cwd, show_errors)
         child = Child(name, proc, log, last=last)
+        self._names[key] = name
         self.children.append(child)
         return child
 
@@ -146,7 +276,7 @@ class Supervisor:
 
     def stop_all(self, grace: float = STOP_GRACE) -> None:
         """Stop every child: all at once, then those marked ``last`` (the master, so that nodes can still leave
-        it cleanly)."""
+        it cleanly); then end whatever they left running (recorded in :attr:`left`)."""
         for wave in (False, True):
             children = [c for c in reversed(self.children) if c.last == wave]
             for child in children:
@@ -158,19 +288,20 @@ class Supervisor:
                         pass
             for child in children:
                 stop_group(child.proc, grace)
+        if self._link is not None:
+            ended = self._link.sweep(min(grace, SWEEP_GRACE))
+            with self._lock:
+                known = {p.pid for p in self.left}
+                self.left += [Leftover(self._names.get(e["owner"]), e["pid"], e["cmd"])
+                              for e in ended if not e["own"] and e["pid"] not in known]
 
     def __enter__(self) -> Supervisor:
         with _ACTIVE_LOCK:
             _ACTIVE.add(self)
-
-        def interrupt(signum, frame):
-            raise KeyboardInterrupt(f"signal {signum}")
-
-        for sig in (signal.SIGTERM, signal.SIGHUP):
-            try:
-                self._old[sig] = signal.signal(sig, interrupt)
-            except ValueError:   # not the main thread: the caller's own handlers stay
-                pass
+        if threading.current_thread() is threading.main_thread():   # elsewhere the caller's own handlers stay
+            self._old[signal.SIGINT] = signal.getsignal(signal.SIGINT)
+            for sig in (signal.SIGTERM, signal.SIGHUP):
+                self._old[sig] = signal.signal(sig, _interrupt)
         return self
 
     def __exit__(self, *exc) -> None:
@@ -179,6 +310,8 @@ class Supervisor:
         finally:
             with _ACTIVE_LOCK:
                 _ACTIVE.discard(self)
+            if self._link is not None:
+                self._link.close()
             for sig, old in self._old.items():
-                signal.signal(sig, old)
+                signal.signal(sig, old if old is not None else signal.SIG_DFL)
             self._old.clear()

@@ -76,7 +76,7 @@ def run_nodes(world: World, nodes: list[NodeSpec], options: RunOptions, base_env
         set_param(uri, "/worldgen/pids", [c.proc.pid for c in children])
         set_param(uri, START_PARAM, True)
         trace, alive, ended_by = finish_run(simulator, children, nodes, options, supervisor, trace_file)
-        return outcome_of(trace, nodes, children, alive, ended_by, options)
+        return outcome_of(trace, nodes, children, alive, ended_by, options, left=supervisor.left)
 
 
 def _wait_for_simulator(simulator: Child, uri: str) -> None:

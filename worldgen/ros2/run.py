@@ -96,7 +96,7 @@ def run_nodes(world: World, nodes: list[NodeSpec], options: RunOptions, stack: s
         trace, alive, ended_by = finish_run(simulator, children, nodes, options, supervisor, trace_file)
         cmd_type = "geometry_msgs/msg/TwistStamped" if stack == "jazzy" and cmd_vel != "twist" else \
             "geometry_msgs/msg/Twist"
-        outcome = outcome_of(trace, nodes, children, alive, ended_by, options, cmd_type)
+        outcome = outcome_of(trace, nodes, children, alive, ended_by, options, cmd_type, left=supervisor.left)
         outcome.findings[:0] = [Finding(f["check"], f["severity"], f["message"], fix=f.get("fix"))
                                 for f in trace.get("findings") or []]
         return outcome
