@@ -10,7 +10,8 @@ condition it cannot tell — is an :class:`Unknown` that says what and at which 
 
 Code that is not run (a loop's body, both branches of a condition that cannot be told, ``except`` blocks,
 comprehensions) is handed to the caller's ``Ctx.on_skip``, which says whether it matters; names it assigns become
-:class:`Unknown`. Work is bounded: nesting depth, followed calls and the size of built strings and lists.
+:class:`Unknown`. A caller may ask for comprehensions to be run (``Ctx.comprehensions``: setup.py's ``sorted(p for
+p in glob(…) if os.path.isfile(p))``) when every iterable and condition in them can be known. Work is bounded: nesting depth, followed calls and the size of built strings and lists.
 """
 
 from __future__ import annotations
@@ -22,8 +23,9 @@ from typing import Any, List
 from ..core.errors import WorldFileError
 from .stdlib import binary, call_method, call_named, compare, format_value, module_attribute, subscript, \
     value_attribute
-from .values import (MAX_CALL_DEPTH, MAX_CALLS, MAX_DEPTH, MAX_PYTHON_BYTES, MAX_WORK, Call, Ctx, Frame,
-                       Function, Returned, Symbol, Unknown, describe, first_unknown, not_run, shown, sized, truth)
+from .values import (MAX_CALL_DEPTH, MAX_CALLS, MAX_DEPTH, MAX_ITERATIONS, MAX_PYTHON_BYTES, MAX_SIZE, MAX_WORK,
+                     Call, Ctx, Frame, Function, Returned, Symbol, Unknown, describe, first_unknown, not_run, shown,
+                     sized, truth)
 
 
 # ------------------------------------------------------------------------------------------- expressions
@@ -186,9 +188,58 @@ def _subscript(ctx, node, frame):
 
 
 def _comprehension(ctx, node, frame):
+    if ctx.comprehensions:
+        value = _run_comprehension(ctx, node, frame)
+        if value is not None:
+            return value
     if ctx.on_skip is not None:
         ctx.on_skip(ctx, "comprehension", node, frame, None)
     return Unknown(f"{not_run('comprehension', node)} is not run here", node.lineno, skipped=True)
+
+
+def _run_comprehension(ctx, node, frame):
+    """The value of a comprehension whose every iterable and condition can be known (a list for a list, set or
+    generator; a dict), its names bound in a frame of its own as Python does; None when one cannot be known or
+    it would build more than MAX_SIZE items or go through more than MAX_ITERATIONS in the file's comprehensions."""
+    inner = Frame(frame)
+    items: list = []
+
+    def walk(generators) -> bool:
+        if not generators:
+            if isinstance(node, ast.DictComp):
+                items.append((evaluate(ctx, node.key, inner), evaluate(ctx, node.value, inner)))
+            else:
+                items.append(evaluate(ctx, node.elt, inner))
+            return len(items) <= MAX_SIZE
+        first = generators[0]
+        source = evaluate(ctx, first.iter, inner)
+        if getattr(first, "is_async", 0) or not isinstance(source, (list, tuple, str, dict)):
+            return False
+        for item in list(source):
+            ctx.iterations += 1
+            if ctx.iterations > MAX_ITERATIONS:
+                return False
+            bind(ctx, first.target, item, inner)
+            kept = True
+            for test in first.ifs:
+                known = truth(evaluate(ctx, test, inner))
+                if known is None:
+                    return False
+                if not known:
+                    kept = False
+                    break
+            if kept and not walk(generators[1:]):
+                return False
+        return True
+
+    if not walk(list(node.generators)):
+        return None
+    if not isinstance(node, ast.DictComp):
+        return items
+    keys = [k for k, _ in items]
+    if not all(isinstance(k, (str, int, float, bool)) or k is None for k in keys):
+        return None
+    return dict(items)
 
 
 def _lambda(ctx, node, frame):

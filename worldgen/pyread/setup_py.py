@@ -27,6 +27,7 @@ class SetupInfo:
     name: object = None
     data_files: List[Tuple[object, list]] = field(default_factory=list)
     scripts: Set[str] = field(default_factory=set)
+    entry_points: Dict[str, str] = field(default_factory=dict)   # console_scripts name -> "module:function"
     unreadable: List[Tuple[Optional[int], str]] = field(default_factory=list)
     found: bool = False
 
@@ -50,12 +51,22 @@ def read_setup(setup_py: Path) -> SetupInfo:
 
     calls = {"setup": setup, "glob": lambda ctx, call: [GlobPattern(call.arg(0, "pathname"))]
              if isinstance(call.arg(0, "pathname"), str) else Unknown("glob() of a pattern that cannot be known",
-                                                                        call.line)}
+                                                                        call.line),
+             "os.path.isfile": _is_file}
     try:
-        read_module(Ctx(setup_py, {}, calls, on_skip=skipped), parse_python(setup_py, "setup.py"))
+        read_module(Ctx(setup_py, {}, calls, on_skip=skipped, comprehensions=True),
+                    parse_python(setup_py, "setup.py"))
     except RecursionError:   # every nesting is bounded; this is the backstop for their product
         raise WorldFileError("setup.py nests too deeply to read", path=setup_py, hint="simplify it") from None
     return info
+
+
+def _is_file(ctx: Ctx, call: Call):
+    """``os.path.isfile(p)`` of a glob's pattern: True, as a pattern stands for the files it matches (directories
+    are never installed: see :func:`_sources`); of anything else not followed (it looks at the file system)."""
+    if isinstance(call.arg(0, "path"), GlobPattern):
+        return True
+    return Unknown("os.path.isfile() is not followed (it looks at the file system)", call.line)
 
 
 def _data_files(info: SetupInfo, given, line: int | None) -> None:
@@ -82,7 +93,9 @@ def _entry_points(info: SetupInfo, given, line: int | None) -> None:
         return
     for item in scripts if isinstance(scripts, (list, tuple)) else []:
         if isinstance(item, str) and "=" in item:
-            info.scripts.add(item.split("=", 1)[0].strip())
+            name, target = (part.strip() for part in item.split("=", 1))
+            info.scripts.add(name)
+            info.entry_points[name] = target
 
 
 def _sources(pkg_dir: Path, sources: list) -> List[Path]:

@@ -17,6 +17,7 @@ MAX_INT = 10 ** 18
 MAX_NESTING = 32           # lists inside lists looked into (a value nested deeper is not a plain one)
 MAX_SHOWN = 400            # characters of an unknown value's reading kept for messages
 MAX_WORK = 20_000_000      # expressions evaluated plus the length of every string and list they give, per file
+MAX_ITERATIONS = 100_000   # items all the comprehensions of a file go through, when they are run (setup.py)
 MAX_PYTHON_BYTES = 4 * 2 ** 20       # a Python launch file or setup.py larger than this is refused
 
 
@@ -129,6 +130,8 @@ class Ctx:
     calls_made: int = 0
     work: int = 0       # see MAX_WORK
     state: Any = None   # the caller's own (the launch reader's current scope)
+    comprehensions: bool = False   # run comprehensions whose iterables and conditions are known (setup.py)
+    iterations: int = 0            # items comprehensions went through, in all (see MAX_ITERATIONS)
 
 
 # --------------------------------------------------------------------------------------------- helpers
