@@ -70,12 +70,13 @@ def build_command(spec: Path, out_dir: Path, sdf_version: str | None, model_dir:
     files = planned_files(building, out_dir, sdf_version=sdf_version or SDF_VERSION[ros], model_dir=model_dir,
                           description=f"{building.name}: built by worldgen from {_text(spec.name)}")
     if package_dir is not None:   # the world moves into the package, beside its launch file
-        from ..launch.spawn import spec_spawn
+        from ..launch.spawn import launch_model, spec_spawn
         from ..packages.world_files import package_world_files
 
         world_text = files.pop(out_dir / f"{building.name}.world")
-        spawn = spec_spawn(plan, world_text)
-        files.update(package_world_files(package_dir, building.name, world_text, spawn, ros))
+        model = launch_model(plan)
+        spawn = spec_spawn(plan, world_text, model)
+        files.update(package_world_files(package_dir, building.name, world_text, spawn, ros, model))
     for path in write_files(files, force=force):
         click.echo(f"wrote {path}")
 
@@ -101,12 +102,13 @@ def _build_gzsim(spec: Path, plan, building, out_dir: Path, sdf_version: str | N
     if package_dir is None:
         files = {out_dir / f"{building.name}.sdf": world_text}
     else:
-        from ..launch.spawn import spec_spawn
+        from ..launch.spawn import launch_model, spec_spawn
         from ..launch.writer_py import without_same_params
         from ..packages.world_files import package_world_files
 
+        model = launch_model(plan)
         files = without_same_params(package_world_files(package_dir, building.name, world_text,
-                                                        spec_spawn(plan, classic), "jazzy", cmd_vel=cmd_vel))
+                                                        spec_spawn(plan, classic, model), "jazzy", model, cmd_vel))
     for path in write_files(files, force=force):
         click.echo(f"wrote {path}")
 

@@ -32,6 +32,14 @@ def spawn_for_world(world_path: str | Path, model: str = "optenv", spawn: Sequen
     return checked_spawn(rooms, None, source=world_path), ("world" if rooms.rooms() else "open")
 
 
+def launch_model(spec, model: str = "optenv") -> str:
+    """The robot model the launch file of ``spec``'s world starts: ``model`` as asked, except that the default
+    (``optenv``: TURTLEBOT3_MODEL, else the Burger) gives way to a robot the spec names other than the Burger —
+    a line track's Waffle Pi, the one with the camera, as the class's lab B starts it."""
+    named = spec.robot.model if spec.robot is not None else None
+    return named if model == "optenv" and named not in (None, "burger") else model
+
+
 def spec_spawn(spec, world_text: str, model: str = "optenv") -> Pose:
     """The spawn pose for the world built from ``spec``: the spec's robot pose, checked against ``world_text``
     (the built world) as ``worldgen launch`` checks it, or without one the deepest point of its room."""

@@ -28,7 +28,7 @@ from typing import Mapping
 from ..core.errors import InputError
 from ..core.resources import render_template
 from ..launch.writer_py import check_ros2, world_package_files
-from .catkin import PackageArgs, PackageFiles, PackageRequest, package_request, world_from_spec
+from .catkin import PackageArgs, PackageFiles, PackageRequest, package_request, spec_world
 from ..launch.targets import world_text
 
 TEST_DEPENDS = ("ament_copyright", "ament_flake8", "ament_pep257", "python3-pytest")
@@ -146,7 +146,7 @@ def spec_world_files(spec_path: str | Path, package: str, ros: str, model: str =
     """The spec's world in a ROS 2 package ``package``: ``{"worlds": …, "launches": …, "params": …}`` (file name
     → text, ready for :func:`ament_package_files`), the world's file name and the spawn pose its launch file
     has."""
-    world_file, classic_text, spawn = world_from_spec(spec_path, model)
+    world_file, classic_text, spawn, model = spec_world(spec_path, model)
     files = world_package_files(Path(world_file).stem, world_text(classic_text, ros), package, ros, spawn, model,
                                 cmd_vel)
     grouped: dict[str, dict[str, str]] = {"worlds": {}, "launches": {}, "params": {}}

@@ -251,14 +251,21 @@ def package_files(req: PackageRequest, worlds: Mapping[str, str] | None = None,
 def world_from_spec(spec_path: str | Path, model: str = "optenv") -> tuple[str, str, tuple[float, ...]]:
     """Build the world of the spec at ``spec_path``: its file name ``NAME.world``, its SDF text and the robot's
     spawn pose (x, y, z, yaw): the spec's robot pose, or without one the deepest point of the room."""
+    return spec_world(spec_path, model)[:3]
+
+
+def spec_world(spec_path: str | Path, model: str = "optenv") -> tuple[str, str, tuple[float, ...], str]:
+    """:func:`world_from_spec` and the robot model its launch file starts
+    (:func:`worldgen.launch.spawn.launch_model`: the spec's robot when the default is asked)."""
     from ..sdf.writer import spec_world_sdf
-    from ..launch.spawn import spec_spawn
+    from ..launch.spawn import launch_model, spec_spawn
     from ..spec.load import load_spec
 
     spec = load_spec(spec_path)
     world_text = spec_world_sdf(spec)
+    model = launch_model(spec, model)
     spawn = spec_spawn(spec, world_text, model)
-    return f"{spec.name}.world", world_text, spawn
+    return f"{spec.name}.world", world_text, spawn, model
 
 
 def world_package_files(spec_path: str | Path, package: str, model: str = "optenv"
@@ -267,7 +274,7 @@ def world_package_files(spec_path: str | Path, package: str, model: str = "opten
     ``turtlebot3_in_NAME.launch``."""
     from ..launch.writer_xml import default_launch_name
 
-    world_file, world_text, spawn = world_from_spec(spec_path, model)
+    world_file, world_text, spawn, model = spec_world(spec_path, model)
     launch_name = default_launch_name(world_file)
     return ({world_file: world_text},
             {launch_name: launch_xml(world_file, package, model, spawn, launch_name=launch_name)})
