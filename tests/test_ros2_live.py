@@ -206,3 +206,15 @@ def test_the_waffle_pi_camera_reaches_an_rclpy_node(stack, frame, rclpy_python, 
     stamps = sorted(set(seen["stamps"]))
     assert len(stamps) >= 10
     assert all(abs(t * 30 - round(t * 30)) < 1e-3 for t in stamps)
+
+
+def test_the_courses_launch_py_as_world_and_nodes_unbuilt(course, rclpy_python, tag):
+    """The lab's own launch.py, never built with colcon: its world, robot and spawn from Gazebo Sim's include, and
+    its node run from the package's source through setup.py's entry point, with the launch file's use_sim_time."""
+    launch = next(course["jazzy"].rglob("stop_at_wall.launch.py"))
+    assert not list(course["jazzy"].parent.parent.glob("install"))
+    code, doc = run_json([str(launch), str(launch), "--ros", "jazzy", "--task", "stop-at-wall", "--rate", "max"],
+                         rclpy_python, tag)
+    assert code == 0, doc["findings"]
+    assert not [f for f in doc["findings"] if "do not follow /clock" in f["message"]]   # use_sim_time reached it
+    assert doc["metrics"]["final_front_distance_m"] == pytest.approx(0.5, abs=0.1)

@@ -17,7 +17,8 @@ from ..core.spawnpose import Pose
 class NodeRef:
     """A node started by a launch file: ``pkg/type`` run under ``name`` (in namespace ``ns`` when read back),
     with what roslaunch gives it besides: ``args``, its ``<remap>``s (``from``, ``to``) and ``<env>``s, and whether
-    it is ``required`` (its exit ends the launch) or ``respawn`` (started again when it exits)."""
+    it is ``required`` (its exit ends the launch) or ``respawn`` (started again when it exits); a launch.py Node's
+    ``remappings`` are its ``remaps`` and its dict ``parameters`` that resolve its ``params``."""
 
     package: str
     type: str
@@ -29,6 +30,7 @@ class NodeRef:
     env: tuple = ()
     required: bool = False
     respawn: bool = False
+    params: tuple = ()        # a launch.py Node's parameters that resolve to text: (name, value) pairs
 
     @property
     def full_name(self) -> str:

@@ -249,9 +249,35 @@ def _node(read: PyRead, action: Action, scope: Scope) -> None:
     known = first_unknown(parts) is None
     shown_name = name if isinstance(name, str) else executable
     read.info.nodes.append(NodeRef(package, executable, shown_name, ns, " ".join(parts) if known else None,
-                                   action.line))
+                                   action.line, remaps=_pairs(fields.get("remappings"), scope, action.line),
+                                   params=_params(fields.get("parameters"), scope, action.line)))
     if (package, executable) in SPAWNERS:
         spawn(read, executable, parts, scope, action.line, join_ns(ns, shown_name), ns)
+
+
+def _pairs(given, scope: Scope, line: int | None) -> tuple:
+    """A Node's ``remappings=[(from, to), …]``, the pairs that resolve to text."""
+    found = []
+    for item in given if isinstance(given, (list, tuple)) else []:
+        if isinstance(item, (list, tuple)) and len(item) == 2:
+            pair = tuple(scope.resolve(v, line) for v in item)
+            if all(isinstance(v, str) for v in pair):
+                found.append(pair)
+    return tuple(found)
+
+
+def _params(given, scope: Scope, line: int | None) -> tuple:
+    """A Node's ``parameters=[{name: value}, …]``: the (name, text) pairs that resolve (files of parameters are
+    left to the node: ros2 launch would read them)."""
+    found = []
+    for item in given if isinstance(given, (list, tuple)) else []:
+        if not isinstance(item, dict):
+            continue
+        for key, value in item.items():
+            name, text = scope.resolve(key, line), scope.resolve(value, line)
+            if isinstance(name, str) and isinstance(text, str):
+                found.append((name, text))
+    return tuple(found)
 
 
 def spawn(read: PyRead, executable: str, parts: list, scope: Scope, line: int | None, node: str, ns: str) -> None:

@@ -2,8 +2,9 @@
 that has rclpy, :mod:`.pyenv`), a ``PKG/EXECUTABLE`` of a colcon workspace's install (found as ``ros2 run`` finds it:
 ``<prefix>/lib/<PKG>/<EXECUTABLE>`` under ``AMENT_PREFIX_PATH``, or under ``install/`` beside a workspace given
 with ``--launch``), or a ``.launch.py``'s Node actions as the static reader resolves them (executable, name,
-namespace, arguments; the file is never executed), less the ones worldgen stands in for (Gazebo, the spawner,
-robot_state_publisher, ros_gz_bridge).
+namespace, arguments, remappings, the parameters that resolve; the file is never executed), less the ones worldgen
+stands in for (Gazebo, the spawner, robot_state_publisher, ros_gz_bridge). A launch file's node of an ament_python
+package in the same source tree runs from its source, through its ``setup.py`` entry point, when it is not built.
 
 An argument holding ``:=`` belongs to the node before it, as on a ``ros2 run`` command line after ``--ros-args``:
 ``_name:=value`` (ROS 1's private-parameter spelling) and ``-p``-style ``name:=value`` of a known parameter become
@@ -18,8 +19,9 @@ from typing import Sequence
 
 from ..bridge.outcome import NodeSpec, check_python_file, group_args
 from ..core.errors import InputError
-from ..core.packages import PackageIndex
+from ..core.packages import PackageIndex, owning_package, source_tree
 from ..launch.reader_py import read_launch_py
+from ..pyread.setup_py import read_setup
 
 # Packages whose nodes the simulator stands in for when a launch file starts them.
 STAND_INS = frozenset({"gazebo_ros", "ros_gz_sim", "ros_gz_bridge", "ros_gz_image", "robot_state_publisher",
@@ -77,8 +79,11 @@ def prefixes(extra: Sequence[str | Path] = ()) -> list[Path]:
 
 
 def _installed(item: str, python: str, args: list[str], name: str | None = None,
-               extra: Sequence[str | Path] = ()) -> NodeSpec:
+               extra: Sequence[str | Path] = (), sources: Sequence[Path] = ()) -> NodeSpec:
     package, _, executable = item.partition("/")
+    from_source = _from_source(package, executable, python, args, name, sources)
+    if from_source is not None:
+        return from_source
     for prefix in prefixes(extra):
         target = prefix / "lib" / package / executable
         if target.is_file():
@@ -95,11 +100,34 @@ def _installed(item: str, python: str, args: list[str], name: str | None = None,
                           "give the node's .py file")
 
 
+def _from_source(package: str, executable: str, python: str, args: list[str], name: str | None,
+                 sources: Sequence[Path]) -> NodeSpec | None:
+    """An ament_python package's console script run from its source, as its installed entry point would run it
+    (``setup.py``'s ``console_scripts``, read statically): a class's submissions are handed in unbuilt."""
+    if not sources:
+        return None
+    folder = PackageIndex(list(sources)).find(package)
+    if folder is None or not (folder / "setup.py").is_file():
+        return None
+    target = read_setup(folder / "setup.py").entry_points.get(executable)
+    if not target or ":" not in target:
+        return None
+    module, _, function = target.partition(":")
+    file = folder.joinpath(*module.split(".")).with_suffix(".py")
+    if not file.is_file() or not module.replace(".", "").replace("_", "").isalnum() or not function.isidentifier():
+        return None
+    code = (f"import sys; sys.path.insert(0, {str(folder)!r}); sys.argv[0] = {executable!r}; "
+            f"from {module} import {function}; sys.exit({function}())")
+    return NodeSpec(name or executable, [python, "-c", code], args, str(file))
+
+
 def _launch_nodes(path: Path, python: str, args: list[str]) -> list[NodeSpec]:
     if not path.is_file():
         raise InputError("no such launch file", path=path, hint="check the path")
     passed = dict(arg.split(":=", 1) for arg in args)
-    info = read_launch_py(path, passed, finder=PackageIndex(), environ=os.environ)
+    own = owning_package(path)
+    sources = [own, source_tree(own)] if own is not None else []
+    info = read_launch_py(path, passed, finder=PackageIndex(sources), environ=os.environ)
     install = [p / "install" / pkg for p in path.resolve().parents for pkg in
                ((p / "install").iterdir() if (p / "install").is_dir() else [])][:64]
     specs = []
@@ -107,8 +135,9 @@ def _launch_nodes(path: Path, python: str, args: list[str]) -> list[NodeSpec]:
         if node.package in STAND_INS:
             continue
         extra = [f"__node:={node.name}"] + ([f"__ns:={node.ns}"] if node.ns not in ("", "/") else [])
+        extra += [f"{a}:={b}" for a, b in node.remaps] + [f"_{k}:={v}" for k, v in node.params]
         node_args = (node.args.split() if node.args else []) + ros_args(extra)
-        spec = _installed(f"{node.package}/{node.type}", python, node_args, node.name, install)
+        spec = _installed(f"{node.package}/{node.type}", python, node_args, node.name, install, sources)
         spec.launch = f"{path}:{node.line}"
         specs.append(spec)
     if not specs:
