@@ -218,3 +218,32 @@ def test_the_courses_launch_py_as_world_and_nodes_unbuilt(course, rclpy_python, 
     assert code == 0, doc["findings"]
     assert not [f for f in doc["findings"] if "do not follow /clock" in f["message"]]   # use_sim_time reached it
     assert doc["metrics"]["final_front_distance_m"] == pytest.approx(0.5, abs=0.1)
+
+
+def test_namespaced_robots_from_a_launch_py(rclpy_python, tmp_path, tag):
+    """Two robots spawned in namespaces by a Humble launch.py (spawn_entity.py -robot_namespace): the student's node
+    in /tb3_1 drives that robot only, and the report has both."""
+    subprocess.run([sys.executable, "-m", "worldgen", "build", str(ROOM), "-o", str(tmp_path / "room")], check=True,
+                   capture_output=True, env=dict(os.environ, PYTHONPATH=str(REPO)))
+    spawns = "".join(
+        f"        Node(package='gazebo_ros', executable='spawn_entity.py', arguments=['-entity', 'tb3_{i}', '-file',\n"
+        f"             'model.sdf', '-robot_namespace', 'tb3_{i}', '-x', '0.0', '-y', '{y}']),\n"
+        for i, y in enumerate(("0.0", "1.0")))
+    launch = tmp_path / "two.launch.py"
+    launch.write_text(
+        "import os\nfrom launch import LaunchDescription\nfrom launch.actions import IncludeLaunchDescription\n"
+        "from launch.launch_description_sources import PythonLaunchDescriptionSource\n"
+        "from launch_ros.actions import Node\nfrom ament_index_python.packages import get_package_share_directory\n\n\n"
+        "def generate_launch_description():\n"
+        "    world = os.path.join(os.path.dirname(__file__), 'room', 'enclosed_room.world')\n"
+        "    gazebo = os.path.join(get_package_share_directory('gazebo_ros'), 'launch', 'gazebo.launch.py')\n"
+        "    return LaunchDescription([\n"
+        "        IncludeLaunchDescription(PythonLaunchDescriptionSource(gazebo),\n"
+        "                                 launch_arguments={'world': world}.items()),\n" + spawns + "    ])\n")
+    code, doc = run_json([str(launch), str(NODES / "timer_stopper.py"), "__ns:=/tb3_1", "_use_sim_time:=true",
+                          "_stamped:=false", "--robot-ns", "tb3_1", "--ros", "humble", "--task", "stop-at-wall",
+                          "--rate", "max"], rclpy_python, tag)
+    assert code == 0, doc["findings"]
+    robots = doc["metrics"]["robots"]
+    assert robots["/tb3_1"]["path_length_m"] > 1.5 and robots["/tb3_0"]["path_length_m"] < 0.05
+    assert robots["/tb3_1"]["final_pose"][1] == pytest.approx(1.0, abs=0.05)
