@@ -9,6 +9,7 @@ from .errors import InputError
 
 Pose = Tuple[float, float, float, float]   # x, y, z, yaw
 SPAWN_FORMS = "X,Y[,YAW]"
+MAX_SPAWN_DISTANCE = 1e6   # m: as far from the origin as worldgen places anything (1000 km)
 _HINT = ("write --spawn X,Y or X,Y,YAW in metres and radians (the robot stands on the floor), "
          "e.g. --spawn -5.5,-1.0,1.57")
 
@@ -16,7 +17,8 @@ _HINT = ("write --spawn X,Y or X,Y,YAW in metres and radians (the robot stands o
 def parse_spawn(text: str) -> tuple[float, float, float]:
     """A ``--spawn`` value → (x, y, yaw): ``X,Y[,YAW]`` in metres and radians, the same in every command (the
     robot stands on the floor, so there is no z). InputError (with the form to write) for anything else: not
-    two or three numbers, a number that is not finite, or a yaw beyond ±2π (probably degrees)."""
+    two or three numbers, a number that is not finite, X or Y past 1000 km, or a yaw beyond ±2π (probably
+    degrees)."""
     parts = [p.strip() for p in str(text).split(",")]
     try:
         values = [float(p) for p in parts]
@@ -27,6 +29,9 @@ def parse_spawn(text: str) -> tuple[float, float, float]:
         raise InputError(f"bad --spawn value {text!r}: {len(values)} numbers, not 2 or 3{extra}", hint=_HINT)
     if not all(math.isfinite(v) for v in values):
         raise InputError(f"bad --spawn value {text!r}: every number must be finite", hint=_HINT)
+    if max(abs(values[0]), abs(values[1])) > MAX_SPAWN_DISTANCE:
+        raise InputError(f"bad --spawn value {text!r}: X and Y must be within {MAX_SPAWN_DISTANCE / 1000:g} km of the "
+                         "origin", hint=_HINT)
     yaw = values[2] if len(values) == 3 else 0.0
     if abs(yaw) > 2 * math.pi:
         raise InputError(f"bad --spawn yaw {format(yaw, 'g')}: more than 2π, so probably degrees",

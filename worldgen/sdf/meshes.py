@@ -19,6 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
+MAX_VERTEX = 1e6   # m from a mesh's own origin, once scaled (as worldgen.sdf.shapes.MAX_SIZE for a shape)
 _UNIT = re.compile(rb"<unit\b[^>]*\bmeter\s*=\s*[\"']([^\"']+)[\"']")
 
 
@@ -75,8 +76,13 @@ class MeshCache:
         if not isinstance(mesh, trimesh.Trimesh) or len(mesh.faces) == 0:
             return "holds no triangles"
         unit = collada_unit(path) if path.suffix.lower() == ".dae" else 1.0
-        vertices = np.asarray(mesh.vertices, dtype=float) * unit * np.asarray(scale, dtype=float)
+        with np.errstate(over="ignore", invalid="ignore"):
+            vertices = np.asarray(mesh.vertices, dtype=float) * unit * np.asarray(scale, dtype=float)
         faces = np.asarray(mesh.faces, dtype=np.int64)
+        reach = np.abs(vertices).max(initial=0.0)
+        if not np.isfinite(vertices).all() or reach > MAX_VERTEX:
+            return (f"has vertices {'that are not numbers' if not np.isfinite(reach) else f'{reach:.3g} m'} from its "
+                    f"origin once scaled; worldgen reads meshes within {MAX_VERTEX:g} m of theirs")
         for array in (vertices, faces):
             array.setflags(write=False)  # shared by every shape that uses this file and scale
         return vertices, faces
