@@ -9,6 +9,9 @@ import click
 
 from ..core.errors import EXIT_FAILED, EXIT_OK
 from .ros import ros_option
+from ..ros1.transport import doctor_python, noetic
+from ..runtime.doctor import check_machine, check_nodes, to_json, to_text
+from ..runtime.naming import Naming
 
 
 @click.command("doctor")
@@ -26,17 +29,12 @@ def doctor(paths, fmt, ros):
 
     Exit 0: everything found; 1: something missing; 2: a path that does not exist.
     """
-    from ..runtime.doctor import check_machine, check_nodes, to_json, to_text
-    from ..runtime.naming import Naming
-
     if ros == "noetic":
-        from ..ros1.transport import doctor_python, noetic
-
         python, naming = doctor_python(), Naming("noetic", noetic())
     else:
-        from ..ros2.pyenv import doctor_python
+        from ..ros2.pyenv import doctor_python as rclpy_python
 
-        python, naming = doctor_python(), Naming(ros)
+        python, naming = rclpy_python(), Naming(ros)
     found = check_nodes(paths, python, naming=naming) if paths else check_machine(python, naming=naming)
     click.echo(to_json(found) if fmt == "json" else to_text(found), nl=False)
     sys.exit(EXIT_OK if found.ok else EXIT_FAILED)

@@ -25,6 +25,7 @@ from ..core.findings import Finding
 from .naming import ROS2_RUNTIME, Naming
 from .table import provider, runtime_modules
 from .check import OK_STATES, ask, findings, survey
+from ..core.packages import IGNORE_MARKER, MANIFEST, crawl, is_workspace
 
 MAX_NODES = 5000   # files taken from one folder (a folder as big as a disk stops there)
 RUNTIME = "class runtime"
@@ -96,15 +97,17 @@ def _is_python(path: Path) -> bool:
 
 
 def _folder_nodes(folder: Path) -> list[Path]:
-    """The ``.py`` files under ``folder`` outside catkin packages, and the Python files in each package's
-    ``scripts/`` and ``nodes/``; hidden folders, ``CATKIN_IGNORE`` and a workspace's generated spaces skipped."""
-    from ..core.packages import IGNORE_MARKER, MANIFEST, crawl, is_workspace
-
+    """The ``.py`` files under ``folder`` outside packages, the Python files in each catkin package's ``scripts/``
+    and ``nodes/``, and an ament_python package's own modules (``PKG/PKG/*.py`` but ``__init__.py``); hidden
+    folders, ``CATKIN_IGNORE`` and a workspace's generated spaces skipped."""
     found: list[Path] = []
     for package in crawl(folder, workspaces=True, limit=MAX_NODES):
         for sub in ("scripts", "nodes"):
             if (package / sub).is_dir():
                 found += sorted(p for p in (package / sub).rglob("*") if p.is_file() and _is_python(p))
+        own = package / package.name
+        if (package / "setup.py").is_file() and own.is_dir():
+            found += sorted(p for p in own.glob("*.py") if p.name != "__init__.py")
     for dirpath, dirnames, filenames in os.walk(folder):
         here = Path(dirpath)
         if MANIFEST in filenames or IGNORE_MARKER in filenames:
