@@ -247,3 +247,26 @@ def test_namespaced_robots_from_a_launch_py(rclpy_python, tmp_path, tag):
     robots = doc["metrics"]["robots"]
     assert robots["/tb3_1"]["path_length_m"] > 1.5 and robots["/tb3_0"]["path_length_m"] < 0.05
     assert robots["/tb3_1"]["final_pose"][1] == pytest.approx(1.0, abs=0.05)
+
+
+def test_a_killed_run_leaves_nothing_behind(rclpy_python, tag):
+    """SIGTERM to `worldgen run --ros` while its node drives: the simulator and the node end with it."""
+    import signal
+
+    key, _, value = tag.partition("=")
+    env = dict(os.environ, WORLDGEN_ROS2_PYTHON=rclpy_python, PYTHONPATH=str(REPO), **{key: value})
+    proc = subprocess.Popen([sys.executable, "-m", "worldgen", "run", str(ROOM), str(NODES / "timer_stopper.py"),
+                             "--ros", "jazzy", "--rate", "1", "--duration", "60"], env=env,
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+
+    def children() -> list[str]:
+        return [p for p in leftovers(tag) if int(p.split()[0]) != proc.pid]
+
+    deadline = time.monotonic() + 60
+    while time.monotonic() < deadline and not any("timer_stopper.py" in p for p in children()):
+        time.sleep(0.2)
+    running = children()
+    assert any("timer_stopper.py" in p for p in running) and any("worldgen.ros2.node" in p for p in running), running
+    proc.send_signal(signal.SIGTERM)
+    assert proc.wait(timeout=30) != 0
+    no_leftovers(tag, wait=10.0)
