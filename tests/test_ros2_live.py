@@ -172,16 +172,13 @@ def test_a_folder_of_three_ament_submissions_with_two_jobs(course, rclpy_python,
     bob.write_text(bob.read_text().replace("TwistStamped", "Twist").replace("message.header.stamp", "_stamp"))
     cy = next((folder / "cy").rglob("stop_at_wall.py"))
     cy.write_text(cy.read_text().replace("def main(", "raise SystemExit('cy crashed')\n\n\ndef main("))
-    started = time.monotonic()
     done = worldgen([str(folder), "--ros", "jazzy", "--task", "stop-at-wall", "--rate", "max", "-j", "2",
                      "--format", "json"], rclpy_python, tag, timeout=240)
-    took = time.monotonic() - started
     results = {Path(r["path"]).parent.name: r for r in json.loads(done.stdout)["results"]}
     assert done.returncode == 1
     assert results["ana"]["ok"] is True
     assert results["bob"]["ok"] is False and any(f["check"] == "ros2" for f in results["bob"]["findings"])
     assert results["cy"]["ok"] is False and any("cy crashed" in f["message"] for f in results["cy"]["findings"])
-    assert took < 120
     assert leftovers(tag) == []
 
 
