@@ -267,3 +267,10 @@ def test_a_killed_run_leaves_nothing_behind(rclpy_python, tag):
     proc.send_signal(signal.SIGTERM)
     assert proc.wait(timeout=30) != 0
     no_leftovers(tag, wait=10.0)
+
+
+def test_a_namespace_typo_names_where_the_robots_are(rclpy_python, tag):
+    code, doc = run_json([str(ROOM), str(NODES / "timer_stopper.py"), "__ns:=/tmb3_1", "--ros", "jazzy",
+                          "--duration", "3", "--rate", "max"], rclpy_python, tag)
+    said = [f for f in doc["findings"] if "no robot lives in /tmb3_1" in f["message"]]
+    assert code == 1 and len(said) == 1 and "/cmd_vel" in said[0]["message"] and "__ns" in said[0]["fix"]

@@ -277,9 +277,12 @@ class Watcher:
             if getattr(sample, "key", None) is not None and sample.key != self.own:
                 self.others.add(sample.key)
         for sample in self.publications.take(N=256):
-            robot = self.cmd_topics.get(getattr(sample, "topic_name", ""))
+            name = getattr(sample, "topic_name", "")
+            robot = self.cmd_topics.get(name)
             if robot is not None and sample.participant_key != self.own:
                 self._publication(robot, sample)
+            elif robot is None and name.startswith("rt/") and name.endswith("/cmd_vel"):
+                self._no_robot(name[2:])
         for sample in self.subscriptions.take(N=256):
             if getattr(sample, "topic_name", "") == "rt/clock":
                 self.on_clock.add(sample.participant_key)
@@ -315,6 +318,13 @@ class Watcher:
                       f"{ignoring} of the {len(self.others)} node processes do not follow /clock (use_sim_time is "
                       f"off): simulated time ran {pace}, their timers and sleeps on the wall clock",
                       "grade at --rate 1, or run the node with use_sim_time (_use_sim_time:=true after it)")
+
+    def _no_robot(self, topic: str) -> None:
+        """A velocity command for a namespace where no robot lives (a typo in ``__ns:=``, say)."""
+        there = ", ".join(sorted(r.cmd_name for r in self.wire.robots))
+        self._say(("nobody", topic), "error",
+                  f"a node publishes {topic}, but no robot lives in {topic.rsplit('/', 1)[0] or '/'}: the robots "
+                  f"take {there}", "check the node's namespace (__ns:=) and its cmd_vel remapping")
 
     def _say(self, key, severity: str, message: str, fix: str) -> None:
         if key not in self.said:
