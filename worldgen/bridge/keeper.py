@@ -77,7 +77,11 @@ def exit_code(status: int) -> int:
 def process_table() -> dict[int, tuple[int, int, int, str]]:
     """Every process's (parent, process group, session, state) from ``/proc``."""
     table = {}
-    for entry in os.listdir("/proc"):
+    try:
+        entries = os.listdir("/proc")
+    except OSError:   # no /proc (not Linux): nothing can be found, nothing is swept
+        return table
+    for entry in entries:
         if not entry.isdigit():
             continue
         try:
