@@ -32,17 +32,28 @@ class Plugins:
     true pose in the world (gazebo_ros_diff_drive's odometrySource world); ``odom_covariance`` (None: zeros);
     ``imu_frame``: the IMU's frame id, ``{model}`` standing for the robot model (None: its link);
     ``imu_covariance``: the diagonal of the angular velocity and linear acceleration covariances; ``effort``:
-    joint_states carries efforts (zeros) as Gazebo Sim's JointStatePublisher does."""
+    joint_states carries efforts (zeros) as Gazebo Sim's JointStatePublisher does; ``twist_covariance``: the
+    odometry's twist carries the pose's covariance (ROS 2's gazebo_ros_diff_drive) or zeros (ROS 1's);
+    ``joint_velocity``: joint_states carries the wheels' velocities (ROS 1's diff drive fills positions only).
+
+    ``imu_sensor``: the IMU is a Gazebo IMU sensor (Humble's gazebo_ros_imu_sensor, Gazebo Sim's Imu system):
+    proper acceleration (gravity included, +9.8 up at rest) and rates in the sensor's frame. Otherwise it is
+    Noetic's TurtleBot3 IMU, the model plugin libgazebo_ros_imu (gazebo_plugins/src/gazebo_ros_imu.cpp): the link's
+    world velocity differenced between updates (no gravity: about 0 at rest) and the world angular velocity, each
+    turned by the link's rotation (``RotateVector``, not its inverse, as the plugin does), covariances zero."""
 
     wheel_odometry: bool = False
     odom_covariance: tuple | None = tuple(ODOM_COV)
+    twist_covariance: bool = True
     imu_frame: str | None = None
     imu_covariance: tuple = (0.0, 0.0)
+    imu_sensor: bool = True
     effort: bool = False
+    joint_velocity: bool = True
 
 
 PLUGINS = {
-    "noetic": Plugins(),
+    "noetic": Plugins(twist_covariance=False, imu_sensor=False, joint_velocity=False),
     "humble": Plugins(imu_covariance=(4e-8, 2.89e-4)),
     "jazzy": Plugins(wheel_odometry=True, odom_covariance=None, imu_frame="{model}/imu_link/tb3_imu",
                      imu_covariance=(4e-8, 2.89e-4), effort=True),
@@ -171,7 +182,8 @@ class RobotIO:
                            "child_frame_id": frame(self.prefix, self.base),
                            "pose": {"pose": {"position": vector(position), "orientation": quaternion(orientation)},
                                     "covariance": cov},
-                           "twist": {"twist": twist, "covariance": cov}}
+                           "twist": {"twist": twist,
+                                     "covariance": cov if self.plugins.twist_covariance else [0.0] * 36}}
         if tf or joint_states:
             (pl, pr), (wl, wr) = r.wheel_states()
         if tf:
@@ -185,7 +197,7 @@ class RobotIO:
         if joint_states:
             out["joint_states"] = {"header": header(t, ""),
                                    "name": [r.profile.drive.left_joint, r.profile.drive.right_joint],
-                                   "position": [pl, pr], "velocity": [wl, wr],
+                                   "position": [pl, pr], "velocity": [wl, wr] if self.plugins.joint_velocity else [],
                                    "effort": [0.0, 0.0] if self.plugins.effort else []}
         return out
 
@@ -212,8 +224,12 @@ class RobotIO:
         self.last_velocity = lin
         _, quat = r.link_pose(self.imu_link)
         rot = np.array(pb.getMatrixFromQuaternion(quat)).reshape(3, 3)
-        body_w = rot.T @ np.asarray(ang)
-        body_a = rot.T @ (np.asarray(accel) + np.array([0.0, 0.0, GRAVITY]))
+        if self.plugins.imu_sensor:
+            body_w = rot.T @ np.asarray(ang)
+            body_a = rot.T @ (np.asarray(accel) + np.array([0.0, 0.0, GRAVITY]))
+        else:   # Noetic's libgazebo_ros_imu, quirks included (see Plugins)
+            body_w = rot @ np.asarray(ang)
+            body_a = rot @ np.asarray(accel)
         gyro, accel_cov = self.plugins.imu_covariance
         return {"header": header(t, self.imu_frame), "orientation": quaternion(quat),
                 "angular_velocity": vector(body_w.tolist()), "linear_acceleration": vector(body_a.tolist()),
