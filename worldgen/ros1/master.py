@@ -15,6 +15,7 @@ from pathlib import Path
 
 from ..core.errors import InputError
 from ..bridge.supervise import Child, Supervisor
+from .rosenv import distro_package
 
 CALLER = "/worldgen"
 START_TIMEOUT = 20.0   # s for a master to answer
@@ -49,14 +50,18 @@ def port_in_use(port: int) -> bool:
     return False
 
 
-def rosmaster_command() -> str:
-    found = shutil.which("rosmaster")
-    if found is None:
-        from .rosenv import distro_package
+ROSMASTER_PLACES = ("/usr/bin/rosmaster", "/opt/ros/noetic/bin/rosmaster")   # Debian's, ROS's own
 
+
+def rosmaster_command() -> str:
+    """``rosmaster`` on PATH, else where Debian's or ROS's own package puts it (a venv's or pipx's PATH may lack
+    /usr/bin or /opt/ros/noetic/bin); InputError naming the PATH looked through and the package otherwise."""
+    found = shutil.which("rosmaster") or next((p for p in ROSMASTER_PLACES if os.access(p, os.X_OK)), None)
+    if found is None:
         package = "python3-rosmaster" if distro_package() == "python3-rospy" else "ros-noetic-rosmaster"
-        raise InputError(f"rosmaster (the ROS master) is not installed: install {package}",
-                         hint=f"apt install {package}")
+        raise InputError(f"rosmaster (the ROS master) is neither on PATH ({os.environ.get('PATH', '')}) nor in "
+                         f"{' or '.join(ROSMASTER_PLACES)}: install {package}",
+                         hint=f"apt install {package}, or source /opt/ros/noetic/setup.bash")
     return found
 
 

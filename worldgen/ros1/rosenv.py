@@ -52,9 +52,16 @@ def distro_package() -> str:
     return "python3-rospy"
 
 
-def missing_rospy() -> InputError:
+def missing_rospy(tried: list[str] | None = None) -> InputError:
+    """rospy is nowhere (``tried``: the Pythons that could not import it, said in the message): the package."""
     package = distro_package()
-    return InputError(f"rospy (ROS 1's Python client) is not installed: install {package}",
+    where = f"importable by {', '.join(tried)}" if tried else "installed"
+    chosen = os.environ.get(ENV_PYTHON)
+    if chosen and tried == [chosen]:
+        return InputError(f"rospy (ROS 1's Python client) is not importable by {chosen}, the Python {ENV_PYTHON} "
+                          "names", hint=f"name a Python that has rospy (/usr/bin/python3 with {package}), or unset "
+                                        f"{ENV_PYTHON}")
+    return InputError(f"rospy (ROS 1's Python client) is not {where}: install {package}",
                       hint=f"apt install {package}" + (" and source /opt/ros/noetic/setup.bash"
                                                        if package.startswith("ros-") else ""))
 
@@ -93,4 +100,4 @@ def node_python() -> str:
     for python in candidates:
         if python and os.access(python, os.X_OK) and _imports_rospy(python):
             return python
-    raise missing_rospy()
+    raise missing_rospy([p for p in candidates if p])
