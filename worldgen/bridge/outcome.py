@@ -271,3 +271,15 @@ def finish_run(simulator: Child, children: list[Child], nodes: list[NodeSpec], o
         raise WorldgenError(f"the simulation ended without a result: {simulator.last_error_line() or 'no output'}",
                             hint="please report this to the worldgen developers")
     return json.loads(trace_file.read_text(encoding="utf-8")), alive, ended_by
+
+
+def check_simulator(simulator: Child) -> None:
+    """WorldgenError when the simulator process has ended before its run began: its own one-line error when it
+    gave one, else its last line."""
+    if simulator.running:
+        return
+    line = simulator.last_error_line()
+    if line.startswith("worldgen: error: "):
+        raise WorldgenError(line[len("worldgen: error: "):])
+    raise WorldgenError(f"the simulator did not start: {line or 'no output'}",
+                        hint="please report this to the worldgen developers")

@@ -19,7 +19,8 @@ import tempfile
 import time
 from pathlib import Path
 
-from ..bridge.outcome import NodeSpec, Outcome, RunOptions, finish_run, launch_params, outcome_of
+from ..bridge.outcome import (NodeSpec, Outcome, RunOptions, check_simulator, finish_run, launch_params,
+                               outcome_of)
 from ..bridge.supervise import Child, Supervisor
 from ..bridge.world import World, write_config
 from ..core.errors import WorldgenError
@@ -82,12 +83,7 @@ def run_nodes(world: World, nodes: list[NodeSpec], options: RunOptions, base_env
 def _wait_for_simulator(simulator: Child, uri: str) -> None:
     deadline = time.monotonic() + SIM_START_TIMEOUT
     while "/gazebo" not in node_names(uri):
-        if not simulator.running:
-            line = simulator.last_error_line()
-            if line.startswith("worldgen: error: "):
-                raise WorldgenError(line[len("worldgen: error: "):])
-            raise WorldgenError(f"the simulator did not start: {line or 'no output'}",
-                                hint="please report this to the worldgen developers")
+        check_simulator(simulator)
         if time.monotonic() > deadline:
             raise WorldgenError(f"the simulator did not come up within {SIM_START_TIMEOUT:g} s")
         time.sleep(0.05)

@@ -36,7 +36,7 @@ from ..robots.profile import robot_profile
 from ..sim.session import Session
 from . import msgs
 from .encode import build, velocity
-from .discovery import Graph
+from .discovery import announce
 from .participant import Discovery, Participant, endpoint_qos
 
 START_WAIT = 30.0        # s of real time to wait for the start
@@ -369,29 +369,6 @@ def wait_for_start(wire: DdsWire, watcher: Watcher, config: dict) -> None:
             if time.monotonic() - seen >= SETTLE:
                 return
         time.sleep(0.02)
-
-
-def announce(participant: Participant, wire: DdsWire) -> Graph:
-    """The simulator's endpoints on ``ros_discovery_info`` under the nodes Gazebo's would have (the stack's
-    table: ``/gazebo``'s plugins on Humble, ``/ros_gz_bridge`` on Jazzy), so ``ros2 node list`` shows them."""
-    graph = Graph(participant, distro=wire.stack)
-    table = topics(wire.stack)
-    for key, writer in wire.writers.items():
-        graph.add(table[key].node, writers=[writer])
-    for robot in wire.robots:
-        for key, writer in robot.writers.items():
-            graph.add(_node_in(robot.ns, table[key].node), writers=[writer])
-        graph.add(_node_in(robot.ns, table["cmd_vel"].node), readers=[robot.cmd_reader])
-        for camera in robot.cameras:
-            for key, writer in camera.writers.items():
-                graph.add(_node_in(robot.ns, camera_topics(wire.stack, "", "")[key].node), writers=[writer])
-    graph.publish()
-    return graph
-
-
-def _node_in(ns: str, node: str) -> str:
-    """A plugin's node in the robot's namespace (the class's one robot: the global one)."""
-    return join(ns, node.strip("/"))
 
 
 def _pids(config: dict) -> list:

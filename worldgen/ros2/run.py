@@ -19,7 +19,7 @@ import time
 from contextlib import contextmanager
 from pathlib import Path
 
-from ..bridge.outcome import NodeSpec, Outcome, RunOptions, finish_run, outcome_of
+from ..bridge.outcome import NodeSpec, Outcome, RunOptions, check_simulator, finish_run, outcome_of
 from ..bridge.supervise import Child, Supervisor
 from ..bridge.world import World, write_config
 from ..core.errors import WorldgenError
@@ -107,12 +107,7 @@ def _wait_for_start(simulator: Child, children: list[Child], start_file: Path) -
     :data:`UP_TIMEOUT`, starts it anyway (by the start file)."""
     started = time.monotonic()
     while not simulator.says("worldgen-sim: running"):
-        if not simulator.running:
-            line = simulator.last_error_line()
-            if line.startswith("worldgen: error: "):
-                raise WorldgenError(line[len("worldgen: error: "):])
-            raise WorldgenError(f"the simulator did not start: {line or 'no output'}",
-                                hint="please report this to the worldgen developers")
+        check_simulator(simulator)
         waited = time.monotonic() - started
         if waited > SIM_START_TIMEOUT:
             raise WorldgenError(f"the simulator did not come up within {SIM_START_TIMEOUT:g} s")
