@@ -17,7 +17,7 @@ on it, where worldgen takes it as just above (``benchmarks/bench_mesh_section.py
 
 from __future__ import annotations
 
-MAX_SECTION_SEGMENTS = 50_000   # segments in one mesh's section at one height
+MAX_SECTION_SEGMENTS = 10_000   # segments in one mesh's section at one height
 MAX_CROSSINGS = 5_000           # pairs of those segments that cross (a surface's outline has none)
 
 
@@ -35,6 +35,8 @@ def mesh_section_segments(vertices, faces, z: float):
     f = f[above.any(axis=1) & ~above.all(axis=1)]
     if len(f) == 0:
         return np.zeros((0, 2, 2))
+    if len(f) > MAX_SECTION_SEGMENTS:   # a tangle (see tangled): its hull needs the points, not exact joins
+        return _loose_segments(v[:, :2], d, f)
     # Only the crossing triangles' vertices are merged: np.unique sorts them by their coordinates as it would
     # sort them all, so every edge is taken in the same direction as when the whole mesh is merged.
     used, inverse = np.unique(f, return_inverse=True)
@@ -49,6 +51,20 @@ def mesh_section_segments(vertices, faces, z: float):
     t = np.where(crossing, da / np.where(crossing, da - db, 1.0), 0.0)
     points = v[a][:, :, :2] + (v[b][:, :, :2] - v[a][:, :, :2]) * t[:, :, None]
     order = np.argsort(~crossing, axis=1, kind="stable")[:, :2]   # the two crossing edges of each triangle
+    return np.take_along_axis(points, order[:, :, None], axis=1)
+
+
+def _loose_segments(xy, d, f):
+    """The section's segments of the crossing triangles ``f`` without merging their vertices: each triangle's
+    two crossing edges, interpolated in the triangle's own order (enough for a convex hull, in linear time)."""
+    import numpy as np
+
+    ring = np.roll(f, -1, axis=1)
+    da, db = d[f], d[ring]
+    crossing = (da > 0) != (db > 0)
+    t = np.where(crossing, da / np.where(crossing, da - db, 1.0), 0.0)
+    points = xy[f] + (xy[ring] - xy[f]) * t[:, :, None]
+    order = np.argsort(~crossing, axis=1, kind="stable")[:, :2]
     return np.take_along_axis(points, order[:, :, None], axis=1)
 
 
@@ -106,12 +122,22 @@ def tangled(segments) -> str | None:
     lines = shapely.linestrings(segments)
     tree = shapely.STRtree(lines)
     allowed = 3 * k + 2 * MAX_CROSSINGS   # itself, two neighbours each way, and the crossings allowed
+    tangle = f"a tangle of segments crossing one another (more than {MAX_CROSSINGS} crossings: a triangle soup, " \
+             "not a surface)"
+    # A sample first, spread evenly over the section: in a soup each segment meets hundreds, so 64 of them
+    # tell in one query what the full count would find after many (each query costs as much as the lines met).
+    sample = lines[:: max(1, k // 64)][:64]
+    if len(sample) < k and len(tree.query(sample, predicate="intersects")[0]) * (k / len(sample)) > 4 * allowed:
+        return tangle
     met = 0
-    for start in range(0, k, 64):
-        met += len(tree.query(lines[start:start + 64], predicate="intersects")[0])
+    step = 8
+    start = 0
+    while start < k:
+        met += len(tree.query(lines[start:start + step], predicate="intersects")[0])
         if met > allowed:
-            return f"a tangle of segments crossing one another (more than {MAX_CROSSINGS} crossings: a " \
-                   "triangle soup, not a surface)"
+            return tangle
+        start += step
+        step = min(step * 2, 512)
     return None
 
 

@@ -36,6 +36,7 @@ class ReadContext:
     parsed: Dict[Path, object] = field(default_factory=dict)       # included files: root element, or the error
     include_count: int = 0                                         # includes read so far, at every depth
     pose_texts: Dict[tuple, object] = field(default_factory=dict)  # (text, quat, degrees) → read-only matrix
+    mesh_triangles: int = 0                                        # triangles of the meshes placed so far
 
     @classmethod
     def start(cls, source: Path, model_paths) -> ReadContext:

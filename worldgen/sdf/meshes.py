@@ -19,6 +19,11 @@ from pathlib import Path
 
 import numpy as np
 
+from ..core.inputs import MAX_INPUT_BYTES
+
+MAX_MESH_TRIANGLES = 250_000   # triangles in one mesh file: validate, view and preview stay within 10 s with
+#                                  the largest as a triangle soup (benchmarks/bench_limits.py)
+MAX_WORLD_TRIANGLES = 500_000  # triangles of every mesh a world places, collisions and visuals, each use counted
 MAX_VERTEX = 1e6   # m from a mesh's own origin, once scaled (as worldgen.sdf.shapes.MAX_SIZE for a shape)
 _UNIT = re.compile(rb"<unit\b[^>]*\bmeter\s*=\s*[\"']([^\"']+)[\"']")
 
@@ -36,6 +41,40 @@ def collada_unit(path: Path) -> float:
     except ValueError:
         return 1.0
     return unit if unit > 0 else 1.0
+
+
+_COLLADA_COUNT = re.compile(rb"<(?:triangles|polylist|polygons|trifans|tristrips)\b[^>]*?\bcount\s*=\s*[\"'](\d+)")
+_PLY_FACES = re.compile(rb"element\s+face\s+(\d+)")
+
+
+def triangles_in_file(path: Path) -> int:
+    """How many triangles a mesh file holds, counted without parsing it (a floor: polygons count once): a
+    binary STL's header, an ASCII STL's facets, an OBJ's ``f`` lines, a Collada file's primitives' counts, a
+    PLY header's faces; 0 when the format says nothing this cheaply."""
+    with open(path, "rb") as handle:
+        data = handle.read()
+    suffix = path.suffix.lower()
+    if suffix == ".stl":
+        if len(data) >= 84 and 84 + 50 * int.from_bytes(data[80:84], "little") == len(data):
+            return int.from_bytes(data[80:84], "little")
+        return data.count(b"endfacet")
+    if suffix == ".obj":
+        return data.count(b"\nf ") + data.count(b"\nf\t") + int(data.startswith((b"f ", b"f\t")))
+    if suffix == ".dae":
+        return sum(int(n) for n in _COLLADA_COUNT.findall(data))
+    if suffix == ".ply":
+        found = _PLY_FACES.search(data[:4096])
+        return int(found.group(1)) if found else 0
+    return 0
+
+
+def too_many_triangles(count: int) -> str:
+    return (f"holds {count:,} triangles, more than the {MAX_MESH_TRIANGLES:,} worldgen reads from one mesh (see "
+            "Limits in the README)")
+
+
+DECIMATE = (f"decimate it to under {MAX_MESH_TRIANGLES:,} triangles (Blender's Decimate modifier, MeshLab's quadric "
+            "edge collapse): Gazebo's collisions want a few thousand")
 
 
 class MeshCache:
@@ -58,8 +97,6 @@ class MeshCache:
     def _load(path: Path, scale) -> tuple[np.ndarray, np.ndarray] | str:
         import trimesh  # lazy: heavy import, needed only for worlds with meshes
 
-        from ..core.inputs import MAX_INPUT_BYTES
-
         try:
             info = os.stat(path)
         except OSError as err:
@@ -69,12 +106,17 @@ class MeshCache:
         if info.st_size > MAX_INPUT_BYTES:
             return (f"is larger than {MAX_INPUT_BYTES // 2 ** 20} MiB, the most worldgen reads (see Limits in the "
                     "README)")
+        counted = triangles_in_file(path)   # before parsing: a 2 M-triangle file takes minutes to parse
+        if counted > MAX_MESH_TRIANGLES:
+            return too_many_triangles(counted)
         try:
             mesh = trimesh.load(str(path), force="mesh")
         except Exception as err:  # trimesh raises many types for bad files; all mean "cannot use this mesh"
             return f"cannot be loaded ({type(err).__name__}: {err})"
         if not isinstance(mesh, trimesh.Trimesh) or len(mesh.faces) == 0:
             return "holds no triangles"
+        if len(mesh.faces) > MAX_MESH_TRIANGLES:
+            return too_many_triangles(len(mesh.faces))
         unit = collada_unit(path) if path.suffix.lower() == ".dae" else 1.0
         with np.errstate(over="ignore", invalid="ignore"):
             vertices = np.asarray(mesh.vertices, dtype=float) * unit * np.asarray(scale, dtype=float)

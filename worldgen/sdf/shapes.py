@@ -9,6 +9,7 @@ import numpy as np
 
 from ..core.numbers import format_numbers
 from .context import ReadContext, SdfFile
+from .meshes import DECIMATE, MAX_WORLD_TRIANGLES
 from .resolve import uri_fix
 from .values import children, read_floats
 
@@ -102,16 +103,19 @@ def read_mesh(ctx: ReadContext, g, f: SdfFile, label: str) -> Optional[dict]:
         return None
     try:
         vertices, faces = ctx.meshes.load(resolved.path, scale)
+        if ctx.mesh_triangles + len(faces) > MAX_WORLD_TRIANGLES:
+            raise ValueError(f"would bring the world's meshes past {MAX_WORLD_TRIANGLES:,} triangles, the most "
+                             "worldgen reads in one world (see Limits in the README)")
     except ValueError as err:
+        fix = DECIMATE if "triangles" in str(err) else "re-export the mesh as .dae, .stl or .obj"
         if quiet:
-            entry = ctx.missing_visual_meshes.setdefault(uri, [str(err), "re-export the mesh as .dae, .stl or "
-                                                                          ".obj", f.where(g), []])
+            entry = ctx.missing_visual_meshes.setdefault(uri, [str(err), fix, f.where(g), []])
             entry[3].append(label)
-        else:
+        elif uri not in ctx.unloadable_meshes:
             ctx.unloadable_meshes.add(uri)
-            ctx.note("mesh", "warning", f"mesh {resolved.path} of {label} {err}; skipped", f.where(g),
-                     "re-export the mesh as .dae, .stl or .obj")
+            ctx.note("mesh", "warning", f"mesh {resolved.path} of {label} {err}; skipped", f.where(g), fix)
         return None
+    ctx.mesh_triangles += len(faces)
     return {"kind": "mesh", "vertices": vertices, "faces": faces}
 
 

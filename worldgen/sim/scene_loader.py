@@ -2,7 +2,8 @@
 
 Boxes, cylinders and spheres go into compound bodies of at most 16 children (pybullet silently drops the
 children of ``createCollisionShapeArray`` beyond 16), meshes become static concave triangle meshes (split when
-they have more vertices than pybullet takes in one shape), planes become infinite ``GEOM_PLANE`` bodies.
+they have more vertices than pybullet takes in one shape; a triangle soup becomes its convex hull, see
+:func:`soup_hull`), planes become infinite ``GEOM_PLANE`` bodies.
 pybullet does not say which child of a compound a contact touched, so :meth:`SceneBodies.label` finds the child
 nearest to the contact point.
 """
@@ -19,6 +20,7 @@ from ..core.scene import Scene, Shape
 
 COMPOUND_LIMIT = 16            # children per createCollisionShapeArray that pybullet keeps
 MESH_FACES_PER_SHAPE = 30_000  # ≤ 90,000 vertices per shape; pybullet refuses somewhere above 100,000
+MAX_OVERLAP = 1000             # triangle boxes over an average point of a mesh's box: more is a soup (soup_hull)
 # Collision filter bits. Bullet pairs two objects when each one's group meets the other's mask; a ray (whose
 # group is bit 0) hits objects whose group meets the ray's mask and whose mask has bit 0. So static scene bodies
 # never pair with each other; they, bodies that move under physics (spawned models) and every robot pair with
@@ -96,6 +98,11 @@ def load_scene(client: int, scene: Scene, add_ground: bool = True) -> SceneBodie
     bodies.shapes.update(primitive_bodies(client, scene.shapes))
     for shape in scene.shapes:
         if shape.kind == "mesh" and shape.vertices is not None and shape.faces is not None:
+            hull = soup_hull(np.asarray(shape.vertices, float), np.asarray(shape.faces, int))
+            if hull is not None:   # a triangle soup: its convex hull, as the geometric checks take its sections
+                sid = pb.createCollisionShape(pb.GEOM_MESH, vertices=hull.tolist(), physicsClientId=client)
+                bodies.shapes[_static_body(client, sid, shape.position, shape.orientation)] = [shape]
+                continue
             for vertices, faces in _mesh_pieces(np.asarray(shape.vertices, float), np.asarray(shape.faces, int)):
                 sid = pb.createCollisionShape(pb.GEOM_MESH, vertices=vertices.tolist(),
                                               indices=faces.reshape(-1).tolist(),
@@ -146,6 +153,32 @@ def _static_body(client: int, sid: int, position, orientation) -> int:
     pb.changeDynamics(body, -1, lateralFriction=SURFACE_FRICTION, physicsClientId=client)
     pb.setCollisionFilterGroupMask(body, -1, SCENE_GROUP, SCENE_MASK, physicsClientId=client)
     return body
+
+
+def soup_hull(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray | None:
+    """The convex hull's corners of a triangle soup, None for a surface. A soup's triangles, large and crossing
+    one another, overlap everywhere, so Bullet's ray test meets thousands of them for each beam (a 100 000-triangle
+    soup: 1 s per 360-beam scan); the overlap measured is how many triangles' boxes cover an average point of the
+    mesh's box (each side at least 1 % of the mesh's largest), over :data:`MAX_OVERLAP` making a soup."""
+    if len(faces) < MAX_OVERLAP:
+        return None
+    corners = vertices[faces[(faces >= 0).all(axis=1) & (faces < len(vertices)).all(axis=1)]]
+    if len(corners) == 0:
+        return None
+    extent = vertices.max(axis=0) - vertices.min(axis=0)
+    least = max(float(extent.max()) * 0.01, 1e-9)
+    boxes = np.maximum(corners.max(axis=1) - corners.min(axis=1), least)
+    overlap = float(np.prod(boxes, axis=1).sum() / np.prod(np.maximum(extent, least)))
+    if overlap <= MAX_OVERLAP:
+        return None
+    from scipy.spatial import ConvexHull
+
+    points = corners.reshape(-1, 3)
+    try:
+        return points[ConvexHull(points).vertices]
+    except Exception:   # Qhull refuses a flat or degenerate set (QhullError, named differently across scipy): its box
+        low, high = points.min(axis=0), points.max(axis=0)
+        return np.array([[x, y, z] for x in (low[0], high[0]) for y in (low[1], high[1]) for z in (low[2], high[2])])
 
 
 def _mesh_pieces(vertices: np.ndarray, faces: np.ndarray):
