@@ -77,6 +77,7 @@ def _expanded_size(node, memo: dict, depth: int, source) -> int:
     every time it is used); SpecError past MAX_DEPTH levels or MAX_VALUES values."""
     key = id(node)
     if key in memo:
+        memo["aliased"] = True   # a node met again: an alias (or a merge key) uses it
         if memo[key] is None:
             raise SpecError("a YAML alias refers to itself", path=source, line=node.start_mark.line + 1,
                             hint="remove the recursive *alias")
@@ -91,10 +92,15 @@ def _expanded_size(node, memo: dict, depth: int, source) -> int:
     elif isinstance(node, yaml.MappingNode):
         for k, v in node.value:
             size += _expanded_size(k, memo, depth + 1, source) + _expanded_size(v, memo, depth + 1, source)
-    if size > MAX_VALUES:
+    if size > MAX_VALUES and memo.get("aliased"):
         raise SpecError(f"the YAML stands for more than {MAX_VALUES:,} values once its aliases (*name) and merge "
                         "keys (<<:) are expanded", path=source, line=node.start_mark.line + 1,
                         hint="write the values out, or use fewer nested aliases (see Limits in the README)")
+    if size > MAX_VALUES:
+        raise SpecError(f"the YAML holds more than {MAX_VALUES:,} values (every item of its lists and mappings), "
+                        "more than worldgen reads from one spec", path=source, line=node.start_mark.line + 1,
+                        hint="a floorplan needs a few hundred; draw a big plan as a grid (grid: or a .txt) or a "
+                             "map (map:), see Limits in the README")
     memo[key] = size
     return size
 
