@@ -13,11 +13,11 @@ def cpu_seconds(pid: int) -> float:
 
 
 def simulator_pid(marker: bytes) -> int | None:
-    """The simulator node (``python -m worldgen.ros1.node``) whose environment holds ``marker``
+    """The simulator node (``python -m worldgen.ros1``) whose environment holds ``marker``
     (``NAME=value``), if one runs."""
     for entry in Path("/proc").iterdir():
         try:
-            if entry.name.isdigit() and b"worldgen.ros1.node" in (entry / "cmdline").read_bytes() and \
+            if entry.name.isdigit() and b"-m\0worldgen.ros1\0" in (entry / "cmdline").read_bytes() and \
                     marker in (entry / "environ").read_bytes():
                 return int(entry.name)
         except OSError:

@@ -114,7 +114,7 @@ def scene_sim(tmp_path_factory):
                           gazebo_msgs=gazebo_msgs_path())
     core, env = start_roscore(tmp)
     env = dict(env, PYTHONPATH=str(REPO))
-    node = subprocess.Popen([sys.executable, "-m", "worldgen.ros1.node", str(config)], env=env,
+    node = subprocess.Popen([sys.executable, "-m", "worldgen.ros1", str(config)], env=env,
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
         deadline = time.monotonic() + 30

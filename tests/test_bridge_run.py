@@ -135,7 +135,7 @@ def test_ctrl_c_stops_every_process(tag, tmp_path):
     finds no process of the run left (master, simulator, node)."""
     proc = start_run_until_the_node_runs(tag, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     running = " ".join(leftovers(tag))
-    assert "rosmaster" in running and "worldgen.ros1.node" in running, running   # and worldgen, and the node
+    assert "rosmaster" in running and "-m worldgen.ros1 " in running, running   # and worldgen, and the node
     proc.send_signal(signal.SIGINT)
     out, err = proc.communicate(timeout=60)
     assert (proc.returncode, out, err.strip()) == (1, "", "Aborted!")

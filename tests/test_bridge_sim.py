@@ -123,7 +123,7 @@ def test_sigterm_stops_everything(tmp_path):
     env = ros_env(tmp_path)
     proc = worldgen(["sim", str(ROOM), "--rate", "max"], env)
     wait_master(env, proc)
-    expected = ("-m worldgen sim ", "rosmaster", "-m worldgen.ros1.node ")   # worldgen, the master, the simulator
+    expected = ("-m worldgen sim ", "rosmaster", "-m worldgen.ros1 ")   # worldgen, the master, the simulator
 
     def seen() -> list[str]:
         running = leftovers(env)

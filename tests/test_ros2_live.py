@@ -263,7 +263,7 @@ def test_a_killed_run_leaves_nothing_behind(rclpy_python, tag):
     while time.monotonic() < deadline and not any("timer_stopper.py" in p for p in children()):
         time.sleep(0.2)
     running = children()
-    assert any("timer_stopper.py" in p for p in running) and any("worldgen.ros2.node" in p for p in running), running
+    assert any("timer_stopper.py" in p for p in running) and any("-m worldgen.ros2 " in p for p in running), running
     proc.send_signal(signal.SIGTERM)
     assert proc.wait(timeout=30) != 0
     no_leftovers(tag, wait=10.0)

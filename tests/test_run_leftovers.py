@@ -175,7 +175,7 @@ def test_a_run_killed_with_sigkill_leaves_nothing(tag, tmp_path, node, args):
     assert proc.poll() is None, "worldgen run ended before its node ran"
     time.sleep(1.0)   # the node up and, for the daemons, detached
     running = " ".join(leftovers(tag))
-    assert "rosmaster" in running and "worldgen.ros1.node" in running and "worldgen.bridge.keeper" in running
+    assert "rosmaster" in running and "-m worldgen.ros1 " in running and "worldgen.bridge.keeper" in running
     daemons = [int(p) for p in (tmp_path / "pids").read_text().split()] if args else []
     assert all(alive(p) for p in daemons)
     proc.kill()
@@ -207,7 +207,7 @@ def test_a_command_run_in_process_can_still_be_stopped_after(tag, monkeypatch):
     before = {s: signal.getsignal(s) for s in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)}
 
     def interrupt():
-        wait_for(lambda: any("worldgen.ros1.node" in p for p in leftovers(tag)), 60, "the simulator")
+        wait_for(lambda: any("-m worldgen.ros1 " in p for p in leftovers(tag)), 60, "the simulator")
         time.sleep(2.0)   # its loop reached
         os.kill(os.getpid(), signal.SIGINT)
 

@@ -29,7 +29,7 @@ node's ``rospy.Rate``), ``pause_physics`` stops simulated time until ``unpause_p
 What is due when, and the pace, are the step loop's (:mod:`worldgen.interface.loop`); what each message holds is
 the robot interface's (:mod:`worldgen.interface.robot`); this module puts them on rospy.
 
-Run as ``python -m worldgen.ros1.node CONFIG.json`` (see :func:`main`); a trace of what the robot did is
+Run as ``python -m worldgen.ros1 CONFIG.json`` (:mod:`.__main__`) (see :func:`main`); a trace of what the robot did is
 written to the config's ``trace`` file at the end, for :mod:`.metrics`.
 """
 
@@ -48,7 +48,7 @@ from ..core.errors import WorldgenError
 from ..core.scene import Scene
 from ..interface.camera import CameraIO
 from ..interface.loop import Wire, run_loop
-from ..interface.signals import deliver_interrupts, ignore_interrupts, run_main
+from ..interface.signals import deliver_interrupts, ignore_interrupts
 from ..interface.robot import RobotIO
 from ..interface.topics import topics as stack_topics
 from ..robots import robot_urdf
@@ -340,7 +340,3 @@ def finish(rospy, bridge: Bridge, config: dict, timing: dict) -> None:
             for topics in bridge.robots:
                 topics.bag = None
     rospy.signal_shutdown("worldgen sim done")
-
-
-if __name__ == "__main__":
-    run_main(main)

@@ -68,7 +68,7 @@ def run_nodes(world: World, nodes: list[NodeSpec], options: RunOptions, base_env
                               trace=str(trace_file), bag=str(options.bag) if options.bag else None,
                               start_param=START_PARAM, person=options.person, set_sim_time=False,
                               graded=options.robot_ns, record_scans=options.record_scans)
-        simulator = supervisor.start("simulator", [sys.executable, "-m", "worldgen.ros1.node", str(config)],
+        simulator = supervisor.start("simulator", [sys.executable, "-m", "worldgen.ros1", str(config)],
                                      _bridge_env(env), log=tmp / "simulator.log")
         _wait_for_simulator(simulator, uri)
         children = [supervisor.start(n.name, n.argv, dict(env, **n.env), log=tmp / f"node_{i}.log")

@@ -52,7 +52,7 @@ def sim(world: World, *, rate: float, duration: float | None, no_hit: str,
                               set_sim_time=True)
         root = str(Path(__file__).resolve().parents[2])
         env["PYTHONPATH"] = os.pathsep.join(p for p in (root, env.get("PYTHONPATH")) if p)
-        child = supervisor.start("simulator", [sys.executable, "-m", "worldgen.ros1.node", str(config)], env,
+        child = supervisor.start("simulator", [sys.executable, "-m", "worldgen.ros1", str(config)], env,
                                  show_errors=True)
         x, y, yaw = world.spawn
         robots = [f"{r['ns']}: {r['robot']} at ({r['spawn'][0]:g}, {r['spawn'][1]:g}, {r['spawn'][2]:g})"

@@ -9,8 +9,8 @@ writer (as rclcpp publishers with no subscription cost nothing). What a student'
 real Gazebo — a Twist publisher on Jazzy's TwistStamped ``cmd_vel``, a best-effort publisher on a reliable
 subscription — moves nothing here either, and the trace holds a finding that says why.
 
-Run as ``python -m worldgen.ros2.node CONFIG.json`` (see :func:`main`): the config of :func:`worldgen.bridge.world.
-write_config` plus ``stack``, ``domain``, ``discovery`` (``range``: localhost or subnet, ``peers``: ROS_STATIC_PEERS), ``start_file`` (hold simulated time at 0
+Run as ``python -m worldgen.ros2 CONFIG.json`` (:mod:`.__main__`; see :func:`main`): the config of
+:func:`worldgen.bridge.world.write_config` plus ``stack``, ``domain``, ``discovery`` (``range``: localhost or subnet, ``peers``: ROS_STATIC_PEERS), ``start_file`` (hold simulated time at 0
 until it exists, or until ``expect`` other DDS participants have matched some topic of the robot's) and ``cmd_vel``
 (jazzy: ``twist`` when the bridge is configured for Twist).
 """
@@ -28,7 +28,7 @@ from ..core.errors import WorldgenError
 from ..core.scene import Scene
 from ..interface.camera import CameraIO
 from ..interface.loop import Wire, run_loop
-from ..interface.signals import deliver_interrupts, ignore_interrupts, run_main
+from ..interface.signals import deliver_interrupts, ignore_interrupts
 from ..interface.robot import PLUGINS, RobotIO
 from ..interface.topics import Qos, camera_topics, clock_every, frame, join, topics
 from ..robots import robot_urdf
@@ -277,14 +277,14 @@ class Watcher:
             if getattr(sample, "key", None) is not None and sample.key != self.own:
                 self.others.add(sample.key)
         for sample in self.publications.take(N=256):
-            name = getattr(sample, "topic_name", "")
+            name = getattr(sample, "topic_name", None) or ""   # None for an endpoint that has gone
             robot = self.cmd_topics.get(name)
             if robot is not None and sample.participant_key != self.own:
                 self._publication(robot, sample)
             elif robot is None and name.startswith("rt/") and name.endswith("/cmd_vel"):
                 self._no_robot(name[2:])
         for sample in self.subscriptions.take(N=256):
-            if getattr(sample, "topic_name", "") == "rt/clock":
+            if getattr(sample, "topic_name", None) == "rt/clock":
                 self.on_clock.add(sample.participant_key)
             topic = self.best_effort.get(getattr(sample, "topic_name", ""))
             if topic is not None and sample.participant_key != self.own and _reliable(sample.qos):
@@ -434,7 +434,3 @@ def main(argv: list) -> int:
                     _write_json(config["trace"], dict(wire.result(), timing=timing))
             graph.close()
     return 0
-
-
-if __name__ == "__main__":
-    run_main(main)

@@ -87,7 +87,7 @@ def run_nodes(world: World, nodes: list[NodeSpec], options: RunOptions, stack: s
                               graded=options.robot_ns, record_scans=options.record_scans, stack=stack, domain=domain,
                               discovery={"range": "localhost", "peers": []}, expect=len(nodes), cmd_vel=cmd_vel,
                               pids_file=str(tmp / "pids.json"))
-        simulator = supervisor.start("simulator", [sys.executable, "-m", "worldgen.ros2.node", str(config)],
+        simulator = supervisor.start("simulator", [sys.executable, "-m", "worldgen.ros2", str(config)],
                                      _simulator_env(env), log=tmp / "simulator.log")
         children = [supervisor.start(n.name, n.argv, dict(env, **n.env), log=tmp / f"node_{i}.log")
                     for i, n in enumerate(nodes)]

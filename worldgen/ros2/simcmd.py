@@ -43,7 +43,7 @@ def sim(world: World, *, stack: str, cmd_vel: str | None, rate: float, duration:
                               domain=domain, discovery={"range": discovery.range, "peers": list(discovery.static_peers)}, cmd_vel=cmd_vel, start_file=None, expect=0)
         root = str(Path(__file__).resolve().parents[2])
         env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in (root, os.environ.get("PYTHONPATH")) if p))
-        child = supervisor.start("simulator", [sys.executable, "-m", "worldgen.ros2.node", str(config)], env,
+        child = supervisor.start("simulator", [sys.executable, "-m", "worldgen.ros2", str(config)], env,
                                  show_errors=True)
         table = topics(stack)
         names = " ".join(t.full_name() for t in table.values() if t.direction == "out")
