@@ -190,6 +190,8 @@ def outcome_of(trace: dict, nodes: list[NodeSpec], children: list[Child], alive:
     the launch files' and the nodes' findings, a run the machine could not finish in time, and the processes
     ``left`` running after it (:attr:`.supervise.Supervisor.left`) said so."""
     outcome = Outcome(compute(trace), trace=trace, logs={c.name: c.output() for c in children})
+    outcome.findings += [Finding(f["check"], f["severity"], f["message"], fix=f.get("fix"))
+                         for f in trace.get("findings") or []]   # what the simulator saw of the nodes' endpoints
     if len(trace.get("robots") or []) > 1:   # several robots: each one's numbers, by namespace
         outcome.metrics["robots"] = {r["ns"]: dict(compute(dict(r, timing=trace.get("timing"))), name=r["name"])
                                      for r in trace["robots"]}

@@ -50,7 +50,7 @@ from ..interface.camera import CameraIO
 from ..interface.loop import Wire, run_loop
 from ..interface.signals import deliver_interrupts, ignore_interrupts
 from ..interface.robot import RobotIO
-from ..interface.topics import topics as stack_topics
+from ..interface.topics import join, topics as stack_topics
 from ..robots import robot_urdf
 from ..robots.profile import robot_profile
 from ..sim.session import Session
@@ -231,7 +231,20 @@ class Bridge(Wire):
         under ``robots``."""
         graded = self.graded.result()
         return dict(graded, person=self.trace["person"], robot=self.config.get("robot") or "burger",
-                    robots=[t.io.result() for t in self.robots] + self.removed)
+                    robots=[t.io.result() for t in self.robots] + self.removed, findings=self.stray_commands())
+
+    def stray_commands(self) -> list[dict]:
+        """A finding per ``cmd_vel`` some node publishes where no robot lives (a typo in ``__ns:=``, say)."""
+        try:
+            published = [name for name, _ in self.rospy.get_published_topics()]
+        except Exception:   # noqa: BLE001  (no master answer: nothing to say)
+            return []
+        taken = sorted(join(t.ns, "cmd_vel") for t in self.robots)
+        return [{"check": "node", "severity": "error",
+                 "message": f"a node publishes {name}, but no robot lives in {name.rsplit('/', 1)[0] or '/'}: the "
+                            f"robots take {', '.join(taken)}",
+                 "fix": "check the node's namespace (__ns:=) and its cmd_vel remapping"}
+                for name in sorted(published) if name.endswith("/cmd_vel") and name not in taken]
 
 
 def wait_for_start(rospy, bridge: Bridge, param: str) -> None:

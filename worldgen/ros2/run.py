@@ -23,7 +23,6 @@ from ..bridge.outcome import NodeSpec, Outcome, RunOptions, check_simulator, fin
 from ..bridge.supervise import Child, Supervisor
 from ..bridge.world import World, write_config
 from ..core.errors import WorldgenError
-from ..core.findings import Finding
 
 DOMAINS = range(42, 102)   # 0-101 are safe on every machine; below 42 are the ones people pick by hand
 LOCKS = Path(tempfile.gettempdir()) / "worldgen-dds"
@@ -96,10 +95,7 @@ def run_nodes(world: World, nodes: list[NodeSpec], options: RunOptions, stack: s
         trace, alive, ended_by = finish_run(simulator, children, nodes, options, supervisor, trace_file)
         cmd_type = "geometry_msgs/msg/TwistStamped" if stack == "jazzy" and cmd_vel != "twist" else \
             "geometry_msgs/msg/Twist"
-        outcome = outcome_of(trace, nodes, children, alive, ended_by, options, cmd_type, left=supervisor.left)
-        outcome.findings[:0] = [Finding(f["check"], f["severity"], f["message"], fix=f.get("fix"))
-                                for f in trace.get("findings") or []]
-        return outcome
+        return outcome_of(trace, nodes, children, alive, ended_by, options, cmd_type, left=supervisor.left)
 
 
 def _wait_for_start(simulator: Child, children: list[Child], start_file: Path) -> None:
