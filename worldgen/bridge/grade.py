@@ -35,9 +35,9 @@ START_TRIES = 3
 
 
 def submissions(folder: Path) -> list[Path]:
-    """The catkin packages under ``folder`` (crawled as rospack does; a workspace through its ``src/`` only),
-    else its subfolders; sorted."""
-    found = [p for p in crawl(folder, workspaces=True) if p != folder]
+    """The catkin packages under ``folder`` (crawled as rospack does; a workspace through its ``src/`` only; a
+    symlinked folder leading out of ``folder`` not followed), else its subfolders; sorted."""
+    found = [p for p in crawl(folder, workspaces=True, outside=[]) if p != folder]   # never out of the folder
     if not found:
         found = [p for p in folder.iterdir() if p.is_dir() and not p.name.startswith(".")]
     return sorted(found)

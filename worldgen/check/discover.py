@@ -7,7 +7,9 @@ goes. Packages — catkin ones and ROS 2's ament ones alike — are found as ros
 ``AMENT_IGNORE`` skipped, not entering a package). A folder holding no package is searched for world files
 (``.world``, ``.sdf``), Gazebo model folders and floorplan specs (``.yaml``, ``.yml``, ``.json``) instead; a world
 built from a spec beside it (same name) is left out, the spec standing for both. Everything comes back sorted by
-path, so the same folder gives the same plan on every machine.
+path, so the same folder gives the same plan on every machine. The search never leaves the folder: a symlinked
+folder in it that leads out (a submission's link to ``/usr/share`` or ``/``) is not followed, and the folder's
+note names it.
 
 :func:`shard` takes a stable share of planned items for ``--shard K/N``.
 """
@@ -36,9 +38,19 @@ class Found:
     folder: Path
     packages: Tuple[Path, ...] = ()
     files: Tuple[Tuple[str, Path], ...] = ()
+    links_out: Tuple[Path, ...] = ()   # symlinked folders in it leading out of it: not followed
 
     @property
     def note(self) -> str:
+        said = self._found()
+        if not self.links_out:
+            return said
+        shown = ", ".join(f"{p} -> {os.path.realpath(p)}" for p in self.links_out[:3])
+        more = f" and {len(self.links_out) - 3} more" if len(self.links_out) > 3 else ""
+        return (f"{said}; {_count(len(self.links_out), 'folder link')} leading out of it not followed: "
+                f"{shown}{more}")
+
+    def _found(self) -> str:
         if self.packages:
             kinds = ["ament" if build_type(p) != "catkin" else "catkin" for p in self.packages]
             counted = [_count(kinds.count(k), f"{k} package") for k in ("catkin", "ament") if kinds.count(k)]
@@ -64,18 +76,24 @@ def is_metapackage(folder: str | Path) -> bool:
     return root is not None and root.find("export/metapackage") is not None
 
 
-def find_packages(folder: Path) -> list[Path]:
-    """The catkin packages under ``folder`` (a workspace: under its ``src/``), sorted by path."""
-    return sorted(crawl(folder, workspaces=True, limit=10000), key=str)
+def find_packages(folder: Path, outside: list | None = None) -> list[Path]:
+    """The catkin packages under ``folder`` (a workspace: under its ``src/``), sorted by path; the walk stays in
+    ``folder``, symlinked folders leading out of it going to ``outside``."""
+    return sorted(crawl(folder, workspaces=True, limit=10000, outside=[] if outside is None else outside), key=str)
 
 
-def find_loose(folder: Path) -> list[tuple[str, Path]]:
+def find_loose(folder: Path, outside: list | None = None) -> list[tuple[str, Path]]:
     """World files, model folders and specs under ``folder`` (sorted by path); a world with a spec of the same
-    name beside it is left out."""
+    name beside it is left out. Symlinked folders are not walked; those leading out of ``folder`` go to
+    ``outside``."""
     found: list[tuple[str, Path]] = []
+    inside = os.path.join(os.path.realpath(folder), "")
     for dirpath, dirnames, filenames in os.walk(folder):
         here = Path(dirpath)
         dirnames[:] = sorted(d for d in dirnames if not d.startswith("."))
+        if outside is not None:
+            outside += [here / d for d in dirnames if os.path.islink(here / d)
+                        and not os.path.join(os.path.realpath(here / d), "").startswith(inside)]
         if here != folder and ((here / "model.config").is_file() and (here / "model.sdf").is_file()):
             found.append(("model-folder", here))
             dirnames.clear()
@@ -95,10 +113,13 @@ def find_loose(folder: Path) -> list[tuple[str, Path]]:
 def search_folder(folder: str | Path) -> Found:
     """:class:`Found` for a folder that is neither a package nor a model folder."""
     folder = Path(folder)
-    packages = find_packages(folder)
+    outside: list = []
+    packages = find_packages(folder, outside)
     if packages:
-        return Found(folder, tuple(packages))
-    return Found(folder, (), tuple(find_loose(folder)))
+        return Found(folder, tuple(packages), links_out=tuple(sorted(outside, key=str)))
+    outside = []
+    loose = tuple(find_loose(folder, outside))
+    return Found(folder, (), loose, tuple(sorted(outside, key=str)))
 
 
 # ------------------------------------------------------------------------------------------------------ shards

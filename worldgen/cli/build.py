@@ -77,7 +77,7 @@ def build_command(spec: Path, out_dir: Path, sdf_version: str | None, model_dir:
         model = launch_model(plan)
         spawn = spec_spawn(plan, world_text, model)
         files.update(package_world_files(package_dir, building.name, world_text, spawn, ros, model))
-    for path in write_files(files, force=force):
+    for path in write_files(files, force=force, within=package_dir if package_dir is not None else out_dir):
         click.echo(f"wrote {path}")
 
 
@@ -109,7 +109,7 @@ def _build_gzsim(spec: Path, plan, building, out_dir: Path, sdf_version: str | N
         model = launch_model(plan)
         files = without_same_params(package_world_files(package_dir, building.name, world_text,
                                                         spec_spawn(plan, classic, model), "jazzy", model, cmd_vel))
-    for path in write_files(files, force=force):
+    for path in write_files(files, force=force, within=package_dir if package_dir is not None else out_dir):
         click.echo(f"wrote {path}")
 
 

@@ -60,7 +60,7 @@ def launch_command(world: Path, package: str | None, name: str | None, model: st
     the package's params/turtlebot3_bridge.yaml)."""
     from ..core.errors import InputError
     from ..core.numbers import format_number
-    from ..core.fsio import write_file, write_files
+    from ..core.fsio import write_files
     from ..launch.gz_bridge_params import BRIDGE_FILE, bridge_yaml
     from ..launch.writer_xml import default_launch_name, launch_xml, package_name_of, parse_node
     from ..launch.writer_py import default_launch_py_name, launch_py, without_same_params
@@ -99,12 +99,12 @@ def launch_command(world: Path, package: str | None, name: str | None, model: st
     if ros == "jazzy":   # the bridge's topics, in the package beside the world (or beside the launch file)
         params = (world_pkg or folder) / "params" / BRIDGE_FILE
         written = write_files(without_same_params({folder / launch_name: text, params: bridge_yaml(kind)}),
-                              force=force)
+                              force=force, within=world_pkg or folder)
         target = written[0]
         for extra in written[1:]:
             click.echo(f"wrote {extra} (the ros_gz_bridge topics; install params/ with the package)")
     else:
-        target = write_file(folder / launch_name, text, force=force)
+        target = write_files({folder / launch_name: text}, force=force, within=world_pkg or folder)[0]
     where = {"given": "--spawn", "spec": "the spec's robot pose", "world": "the deepest free point of the room",
              "open": "the world has no closed room: the deepest free point inside its walls"}
     click.echo(f"wrote {target} (spawn {format_number(pose[0])}, {format_number(pose[1])}, yaw "

@@ -246,15 +246,35 @@ def _temp_beside(target: Path, data: bytes, mode: int) -> Path:
 
 
 # ------------------------------------------------------------------------------------------ files
+def check_within(targets: Iterable[Path], root: Path) -> None:
+    """InputError when a folder between ``root`` (an output folder, itself taken as given) and one of ``targets``
+    is a symbolic link: a writer never writes through a link inside its output, which may lead anywhere."""
+    for target in targets:
+        try:
+            parts = Path(target).parent.relative_to(root).parts
+        except ValueError:
+            continue
+        folder = Path(root)
+        for part in parts:
+            folder = folder / part
+            if folder.is_symlink():
+                raise InputError(f"{folder} is a symbolic link (to {os.readlink(folder)}): worldgen does not write "
+                                 f"through a link inside {root}", path=target,
+                                 hint="replace the link with a folder, or remove it")
+
+
 def write_files(files: Mapping[str | Path, FileData], *, force: bool = False,
-                executable: frozenset[str] | set[str] = frozenset()) -> list[Path]:
+                executable: frozenset[str] | set[str] = frozenset(), within: Path | None = None) -> list[Path]:
     """Write every file of ``files`` (path → text or bytes) or none of them (see the module docstring).
 
     Existing targets (a symbolic link too, dangling or not) are refused unless ``force``; with ``force`` a link
-    is replaced, not followed. Paths listed in ``executable`` (as given) get mode 0755, the rest 0644. Returns the
-    written paths in the given order.
+    is replaced, not followed. Paths listed in ``executable`` (as given) get mode 0755, the rest 0644. With
+    ``within`` (an output folder such as a package), nothing is written through a symlinked folder inside it
+    (:func:`check_within`). Returns the written paths in the given order.
     """
     targets = [Path(p) for p in files]
+    if within is not None:
+        check_within(targets, Path(within))
     sweep(t.parent for t in targets)
     check_free(targets, force)
     for target in targets:   # a file cannot be put over a folder

@@ -85,22 +85,28 @@ def is_workspace(folder: Path) -> bool:
                                           any((folder / d).is_dir() for d in WORKSPACE_SPACES))
 
 
-def crawl(root: str | Path, *, workspaces: bool = False, limit: int | None = None) -> list[Path]:
+def crawl(root: str | Path, *, workspaces: bool = False, limit: int | None = None,
+          outside: list | None = None) -> list[Path]:
     """The package folders under ``root`` in crawl order (see the module docstring); ``[root]`` when ``root``
     is a package itself, ``[]`` when it is no folder. With ``workspaces``, a catkin or colcon workspace is entered
     only through its ``src/`` (its build, devel and install spaces hold copies of the manifests); past ``limit``
-    packages the walk stops (a folder as big as a disk)."""
+    packages the walk stops (a folder as big as a disk). Given a list ``outside``, the walk never leaves ``root``:
+    a symlinked folder leading out of it is not entered but added to the list (a folder handed in to be graded
+    is the student's, not ``/usr/share`` a link in it points to)."""
     root = Path(root)
     if (root / MANIFEST).is_file():
         return [root]
     found: list[Path] = []
     seen: set[str] = set()   # real paths walked: a symlink back up the tree is walked once
+    inside = os.path.join(os.path.realpath(root), "")
     for dirpath, dirnames, filenames in os.walk(root, followlinks=True):
         real = os.path.realpath(dirpath)
         if real in seen or any(marker in filenames for marker in IGNORE_MARKERS):
             dirnames.clear()
             continue
         seen.add(real)
+        if outside is not None:
+            dirnames[:] = [d for d in dirnames if not _leaves(os.path.join(dirpath, d), inside, outside)]
         if MANIFEST in filenames:
             found.append(Path(dirpath))
             dirnames.clear()   # a package holds no other packages
@@ -112,6 +118,15 @@ def crawl(root: str | Path, *, workspaces: bool = False, limit: int | None = Non
             continue
         dirnames[:] = sorted(d for d in dirnames if not d.startswith("."))
     return found
+
+
+def _leaves(path: str, inside: str, outside: list) -> bool:
+    """Whether ``path`` is a symlink to a folder outside ``inside`` (a real path ending in the separator); if so
+    it joins ``outside``."""
+    if not os.path.islink(path) or os.path.join(os.path.realpath(path), "").startswith(inside):
+        return False
+    outside.append(Path(path))
+    return True
 
 
 def owning_package(path: str | Path, levels: int | None = None) -> Path | None:
