@@ -152,13 +152,13 @@ def test_drive_bad_input_exits_2(world, args, words):
 
 
 def test_drive_turns_a_simulator_crash_into_one_line(world, monkeypatch):
-    import worldgen.sim.process as process
+    import worldgen.check.sources as sources   # where drive's simulator child is started
 
     def crashed(*args, **kwargs):
         raise SimCrashed("the simulation process running x was killed by signal 11", rc=-11,
                          stderr_tail="Traceback (most recent call last):\n  pybullet said something")
 
-    monkeypatch.setattr(process, "run_isolated", crashed)
+    monkeypatch.setattr(sources, "run_isolated", crashed)
     result = CliRunner().invoke(main, ["drive", str(world)])
     assert result.exit_code == 2 and "Traceback" not in result.output
     (line,) = result.output.splitlines()

@@ -564,7 +564,7 @@ def test_a_spec_is_checked_as_the_world_it_builds(libsdformat, tmp_path, monkeyp
 
 
 def test_without_libsdformat_the_check_is_skipped_with_a_note(tmp_path, monkeypatch):
-    monkeypatch.setattr("worldgen.check.sdformat.sdformat_check", lambda *args, **kwargs: None)
+    monkeypatch.setattr("worldgen.check.checks.sdformat_check", lambda *args, **kwargs: None)
     world = write_world(tmp_path / "room.world", room_walls(4.0))
     report = tmp_path / "junit.xml"
     code, doc = as_json(world, "--skip-sim", "--sdformat", "--junit", report)

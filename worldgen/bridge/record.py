@@ -7,15 +7,15 @@ from __future__ import annotations
 import io
 import math
 
+from ..core.mpl import matplotlib_agg
+from ..geometry.markings import floor_markings, footprint
+from ..geometry.slices import footprints_between
+
 
 def plot_png(world, trace: dict, result, person: dict | None = None) -> bytes:
     """A PNG of the robot's path over the world's walls (matplotlib's Agg backend, imported here only)."""
-    from ..core.mpl import matplotlib_agg
-
     matplotlib_agg()
     import matplotlib.pyplot as plt
-
-    from ..geometry.slices import footprints_between
 
     fig, ax = plt.subplots(figsize=(7, 7))
     for footprint in footprints_between(world.scene, 0.05, 0.3):
@@ -58,8 +58,6 @@ def plot_png(world, trace: dict, result, person: dict | None = None) -> bytes:
 
 def _draw_markings(ax, scene) -> None:
     """The floor markings (tape, patches) in their own colours, under the path."""
-    from ..geometry.markings import floor_markings, footprint
-
     drawn = False
     for marking in floor_markings(scene):
         for shape in marking.shapes:

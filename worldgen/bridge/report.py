@@ -10,14 +10,16 @@ import math
 from ..check.report import Result, _clean
 from .outcome import Outcome
 from .world import World
+from ..core.errors import InputError
+from ..geometry.placement import world_rooms
+from .rubrics import judge
+from .track import camera_floor_distance, tape_track
 
 
 def room_side(world: World) -> float | None:
     """The shorter side of the free floor's bounding box around the spawn (None: no closed room there)."""
     try:
         import shapely
-
-        from ..geometry.placement import world_rooms
 
         rooms = world_rooms(world.scene, 0.0)
         here = shapely.Point(world.spawn[0], world.spawn[1])
@@ -35,8 +37,6 @@ def result_of(path: str, world: World, outcome: Outcome, task: str | None, targe
                     robot_source=world.robot_source, findings=list(outcome.findings), metrics=dict(outcome.metrics),
                     checks=["node"])
     if task is not None:
-        from .rubrics import judge
-
         found, numbers = judge(task, outcome.trace, outcome.metrics, target, task_context(world, task))
         result.checks.append(task)
         result.findings += found
@@ -50,9 +50,6 @@ def task_context(world: World, task: str | None):
     if task == "wall-follow":
         return room_side(world)
     if task == "line-follow":
-        from ..core.errors import InputError
-        from .track import camera_floor_distance, tape_track
-
         lookahead = camera_floor_distance(world.robot)
         if lookahead is None:
             raise InputError(f"--task line-follow needs a robot with a camera; {world.robot} has none",

@@ -21,7 +21,8 @@ from __future__ import annotations
 import math
 
 from ..core.findings import Finding
-from .metrics import stopped
+from .metrics import path_length, stopped
+from .track import follow_numbers
 
 TASKS = ("stop-at-wall", "spin", "drive-square", "wall-follow", "person-follow", "line-follow")
 DEFAULT_TARGET = {"stop-at-wall": 0.5, "wall-follow": 0.4}
@@ -188,7 +189,6 @@ def _wall_follow(trace, metrics, target, room_side):
     share = sum(abs(row[3] - target) <= WALL_BAND for row in after) / len(after)
     t0 = after[0][0]
     odom = [row for row in trace.get("odom", []) if row[0] >= t0]
-    from .metrics import path_length
 
     travelled = path_length(odom)
     need = max(0.5, (room_side or 2.0 + 2 * target) - 2 * target)
@@ -219,8 +219,6 @@ def _person_follow(trace, metrics, _target, _side):
 
 
 def _line_follow(trace, metrics, _target, context):
-    from .track import follow_numbers
-
     track, lookahead = context
     findings = _contact_findings("line-follow", metrics)
     numbers = follow_numbers(track, trace.get("odom", []), lookahead, LINE_BAND)

@@ -14,6 +14,7 @@ import math
 from dataclasses import dataclass
 
 from ..core.errors import InputError
+from ..geometry.markings import floor_markings
 
 CLOSE = 0.02   # m: the two ends of a line this close make a loop
 SNAP = 1e-4    # m: the grid the tape pieces' ends are put on before they are joined
@@ -41,7 +42,6 @@ def tape_track(scene, where: str = "") -> Track:
     from shapely.ops import linemerge
 
     from ..core.poses import quat_matrix
-    from ..geometry.markings import floor_markings
 
     best = None
     for marking in floor_markings(scene):

@@ -11,6 +11,8 @@ from pathlib import Path
 
 from ..core.errors import InputError, WorldFileError
 from ..core.scene import Scene
+from ..check.sources import load_scene
+from ..core.spawnpose import plan_pose
 
 
 @dataclass
@@ -29,7 +31,6 @@ def load_world(path: str | Path, *, spawn=None, robot: str | None = None, launch
                model_paths=()) -> World:
     """Read the input (see the module docstring). ``spawn``/``robot`` override what the files say; ``launch``
     takes the spawn pose and robot from that launch file. InputError or WorldFileError when it cannot be read."""
-    from ..check.sources import load_scene
     from ..check.validate import input_kind
 
     path = Path(path)
@@ -73,7 +74,6 @@ def load_world(path: str | Path, *, spawn=None, robot: str | None = None, launch
 
 
 def _from_launch(path: Path, need_world: bool = True):
-    from ..core.spawnpose import plan_pose
     from ..launch.reader import read_launch
 
     info = read_launch(path)

@@ -28,6 +28,12 @@ from typing import Callable, Iterator, List, Optional, Sequence
 
 from ..check.report import Result, to_junit
 from ..core.errors import InputError
+from ..check.discover import find_loose
+from ..generate.options import KINDS
+from ..generate.worlds import generate
+from .grade import grade_folder
+from .outcome import Outputs
+from .single import run_single
 
 GENERATED = re.compile(r"^(?P<kind>[a-z]+):(?P<count>\d+)(?:@(?P<seed>\d+))?$")
 MAX_WORLDS = 1000
@@ -55,8 +61,6 @@ class WorldRun:
 
 def parse_source(text: str):
     """``KIND:COUNT[@SEED]`` → (kind, count, seed), or None when ``text`` is not of that form (a folder)."""
-    from ..generate.options import KINDS
-
     match = GENERATED.match(text.strip())
     if match is None:
         return None
@@ -77,7 +81,6 @@ def world_items(source: str) -> Iterator[List[WorldItem]]:
     if generated is None:
         yield _folder_items(Path(source))
         return
-    from ..generate.worlds import generate
 
     kind, count, seed = generated
     with tempfile.TemporaryDirectory(prefix="worldgen-worlds-") as tmp:
@@ -90,8 +93,6 @@ def world_items(source: str) -> Iterator[List[WorldItem]]:
 
 
 def _folder_items(folder: Path) -> List[WorldItem]:
-    from ..check.discover import find_loose
-
     if not folder.is_dir():
         raise InputError("is neither a folder of worlds nor KIND:COUNT[@SEED]", path=folder,
                          hint="give a folder of specs or worlds, or e.g. --worlds rooms:10 (ten generated flats)")
@@ -164,9 +165,6 @@ def check_min_pass(value: float) -> float:
 def node_runner(nodes: Sequence[str], request, transport) -> Callable[[WorldItem], List[Result]]:
     """A runner of the nodes (``run``'s NODE… arguments) in one world, on ``transport``, as ``run WORLD NODE…``
     runs them (:func:`worldgen.bridge.single.run_single`, every file left unwritten)."""
-    from .outcome import Outputs
-    from .single import run_single
-
     def runner(item: WorldItem) -> List[Result]:
         return [run_single(item.path, list(nodes), request, Outputs(fmt="json"), transport)[0]]
     return runner
@@ -176,8 +174,6 @@ def class_runner(folder: Path, nodes: Sequence[str], request, transport, *, jobs
                  ) -> Callable[[WorldItem], List[Result]]:
     """A runner of every submission of ``folder`` in one world (:func:`worldgen.bridge.grade.grade_folder`,
     ``jobs`` submissions at once): every submission meets the same worlds."""
-    from .grade import grade_folder
-
     def runner(item: WorldItem) -> List[Result]:
         return grade_folder(folder, item.path, request, transport, jobs=jobs, nodes=tuple(nodes), shard=shard)
     return runner

@@ -23,6 +23,7 @@ import math
 from ..core.findings import Finding
 from ..core.materials import color_name
 from ..core.scene import Scene
+from ..geometry.markings import floor_markings
 
 CAMERA = "the Waffle Pi's camera"
 IMAGE_WIDTH = 640                  # px
@@ -40,7 +41,6 @@ def apparent_pixels(width: float, distance: float = VIEW_DISTANCE) -> float:
 def check_camera(scene: Scene, robot: str = "waffle_pi"):
     """The ``camera`` check's :class:`~worldgen.check.checks.Outcome` for ``scene``, or None when the scene has no
     floor markings (nothing to say)."""
-    from ..geometry.markings import floor_markings
     from .checks import Outcome
 
     markings = floor_markings(scene)

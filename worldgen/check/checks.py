@@ -19,6 +19,9 @@ from ..core.findings import Finding
 from ..core.scene import Scene
 from ..robots.body import RobotBody, robot_body  # noqa: F401  (the checks' robot; validate imports it from here)
 from .sim_results import Scanned, Settled, SimNumbers, Stopped
+from ..geometry.enclosure import enclosure, passage_width
+from ..geometry.slices import footprints_between, ground_under
+from .sdformat import messages, sdformat_check
 
 GEOMETRIC_CHECKS = ("parse", "enclosed", "spawn-clear")
 SIM_CHECKS = ("settle", "lidar", "spin", "stop-at-wall")
@@ -78,8 +81,6 @@ def check_parse(scene: Scene) -> Outcome:
 def floor_under(scene: Scene, spawn: tuple[float, float, float]) -> tuple[float, dict]:
     """The floor height at the spawn point: 0, or the top of a floor slab under it no higher than a step the
     robot would be lifted onto (Gazebo's asphalt_plane is a 0.1 m box half sunk into the ground)."""
-    from ..geometry.slices import ground_under
-
     height, label = ground_under(scene, spawn[:2], FLOOR_STEP)
     return height, {"floor_height_m": height, "floor": label}
 
@@ -90,8 +91,6 @@ def check_enclosed(scene: Scene, spawn: tuple[float, float, float], body: RobotB
                    ) -> Outcome:
     """The spawn lies in a region the walls close at LiDAR height (above the floor at ``ground``);
     otherwise, where each way out is."""
-    from ..geometry.enclosure import enclosure
-
     height = ground + (body.lidar_height if body.lidar_height is not None else min(body.height, 0.182))
     found = enclosure(scene, spawn[:2], height)
     metrics = {"enclosed": found.enclosed, "slice_height_m": height,
@@ -139,8 +138,6 @@ def _enclosed_verdict(found, spawn, body: RobotBody, metrics: dict, height: floa
         return Outcome([Finding("enclosed", "error", message, where=where, fix=fix)], metrics)
     # The plane is open. Can the robot itself pass each gap? Its body spans the floor to its top, so a window
     # sill or an obstacle under the beams may hold it in while the beams still pass.
-    from ..geometry.enclosure import passage_width
-    from ..geometry.slices import footprints_between
 
     band = footprints_between(scene, ground + CLIMB, ground + body.height, also=(height,))
     passes = [passage_width(band, gap) >= body.width for gap in found.gaps]
@@ -188,8 +185,6 @@ def check_spawn_clear(scene: Scene, spawn: tuple[float, float, float], body: Rob
     (above the climbing threshold) and the robot's top; how far the nearest is; room to turn in place."""
     import shapely
 
-    from ..geometry.slices import footprints_between
-
     robot = placed_footprint(body, spawn)
     prints = footprints_between(scene, ground + CLIMB, ground + body.height)
     centre = shapely.Point(spawn[:2])
@@ -235,8 +230,6 @@ def check_sdformat(world_file: Path, model_paths=(), shown_as: str | None = None
     (the rest of the world loads; the parse check says the same) and names shared by different kinds of children
     (a collision and a visual called alike, which libsdformat 12 refuses as SDF 1.7 does but Gazebo 11 accepts).
     """
-    from .sdformat import messages, sdformat_check
-
     checked = sdformat_check(world_file, model_paths=model_paths)
     if checked is None:
         return None

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 from typing import List, Optional, Tuple
 
 from ..core.findings import Finding
+from ..geometry.placement import deepest_point, robot_radius, room_points, world_rooms
 
 MAX_ROOMS = 8   # rooms checked at most when no spawn is given (the largest ones)
 
@@ -34,8 +35,6 @@ def _xy(x: float, y: float) -> str:
 
 def default_spawns(scene, robot: str) -> List[DefaultSpawn]:
     """The places to check ``scene`` from for ``robot`` when no spawn is given (see the module docstring)."""
-    from ..geometry.placement import deepest_point, robot_radius, room_points, world_rooms
-
     rooms = world_rooms(scene, robot_radius(robot))
     points = room_points(rooms)
     if points:

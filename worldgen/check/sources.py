@@ -12,6 +12,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..core.scene import Scene
+from ..sim.process import run_isolated
 
 
 @dataclass(frozen=True)
@@ -52,8 +53,6 @@ def load_scene(path: str | Path, kind: str = "world", model_paths=()) -> tuple[S
 def run_on_scene(target: str, scene: Scene, kwargs: dict, timeout: float, folder: str | Path | None = None) -> dict:
     """``run_isolated(target, {"scene_file": …, **kwargs})`` with ``scene`` pickled into ``folder`` (a private
     temporary folder of its own when None)."""
-    from ..sim.process import run_isolated
-
     if folder is None:
         with tempfile.TemporaryDirectory(prefix="worldgen-") as tmp:
             return run_on_scene(target, scene, kwargs, timeout, tmp)

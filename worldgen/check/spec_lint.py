@@ -12,6 +12,8 @@ from __future__ import annotations
 from typing import List
 
 from ..core.findings import Finding
+from ..geometry.building import build_geometry, obstacle_names
+from .spec_names import side_name, wall_sides
 
 MIN_OVERLAP = 0.01   # m²: shared floor smaller than this is a wall two rooms share, not an overlap
 
@@ -34,9 +36,6 @@ def lint_spec(spec, building=None, sides=None) -> List[Finding]:
     """The ``spec`` check's findings for ``spec`` (none when it does not build: its own error says why);
     ``building`` and ``sides`` (:func:`worldgen.check.spec_names.wall_sides`) when already known."""
     import shapely
-
-    from ..geometry.building import build_geometry, obstacle_names
-    from .spec_names import side_name, wall_sides
 
     try:
         building = building if building is not None else build_geometry(spec)

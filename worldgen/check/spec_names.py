@@ -18,6 +18,7 @@ from typing import Dict, List
 
 from ..core.findings import Finding
 from ..spec.model import MARKINGS_MODEL
+from ..geometry.building import build_geometry
 
 ON_LINE = 1e-3   # m: a spec side this close to a wall's centre-line lies on it
 
@@ -62,8 +63,6 @@ def wall_sides(spec, building=None) -> Dict[int, list]:
     """Each built wall's index → the spec's sides on it, as (name, from, to); a corner filler → [(its name, None,
     None)]. ``building`` is the spec's geometry when already built."""
     import shapely
-
-    from ..geometry.building import build_geometry
 
     building = building if building is not None else build_geometry(spec)
     sides = _spec_sides(spec)

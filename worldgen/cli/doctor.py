@@ -9,9 +9,6 @@ import click
 
 from ..core.errors import EXIT_FAILED, EXIT_OK
 from .ros import ros_option
-from ..ros1.transport import doctor_python, noetic
-from ..runtime.doctor import check_machine, check_nodes, to_json, to_text
-from ..runtime.naming import Naming
 
 
 @click.command("doctor")
@@ -29,7 +26,12 @@ def doctor(paths, fmt, ros):
 
     Exit 0: everything found; 1: something missing; 2: a path that does not exist.
     """
+    from ..runtime.doctor import check_machine, check_nodes, to_json, to_text
+    from ..runtime.naming import Naming
+
     if ros == "noetic":
+        from ..ros1.transport import doctor_python, noetic
+
         python, naming = doctor_python(), Naming("noetic", noetic())
     else:
         from ..ros2.pyenv import doctor_python as rclpy_python

@@ -8,7 +8,8 @@ from pathlib import Path
 
 from lxml import etree
 
-from .errors import WorldFileError
+from .errors import WorldFileError, WorldgenError
+from .inputs import read_capped
 
 _POSITION_SUFFIX = re.compile(r",?\s*line \d+, column \d+\s*$")
 
@@ -21,9 +22,6 @@ def parser() -> etree.XMLParser:
 def parse_file(path: str | Path):
     """The root element of the XML file ``path``, or None when it cannot be read or parsed (for files that are
     looked at in passing, such as package.xml and model.config)."""
-    from .errors import WorldgenError
-    from .inputs import read_capped
-
     try:
         return etree.fromstring(read_capped(path), parser())
     except (OSError, WorldgenError, etree.XMLSyntaxError, ValueError):

@@ -29,6 +29,7 @@ from dataclasses import dataclass
 
 from ..core.scene import Scene
 from .slices import SLIVER, Footprint, footprints
+from .growth import SMALL, grown, unite
 
 MARGIN = 1.0           # the "outside" frame lies this far beyond the scene and the spawn
 MAX_GAP = 8.0          # openings are searched up to this wide, or up to the walls' own extent when that is more
@@ -82,8 +83,6 @@ def obstacle_union(prints: list[Footprint]):
     """The footprints united and grown by :data:`SLIVER` (empty geometry when there are none)."""
     import shapely
 
-    from .growth import SMALL, unite
-
     if len(prints) <= SMALL:   # few: as GEOS does it (the same region; vertex for vertex as before)
         return shapely.union_all([p.geometry for p in prints]).buffer(SLIVER, quad_segs=2)
     return unite(shapely.buffer([p.geometry for p in prints], SLIVER, quad_segs=2))
@@ -130,8 +129,6 @@ class _Space:
         radius for every plugged space, the plugs added to that. Few: GEOS's buffer of them all."""
         import shapely
 
-        from .growth import SMALL, grown, unite
-
         if len(shapely.get_parts(self.base)) <= SMALL:
             return self.obstacles.buffer(r, quad_segs=8) if r > 0 else self.obstacles
         key = round(r, 6)
@@ -175,8 +172,6 @@ class _Space:
 
     def plugged(self, plug) -> _Space:
         import shapely
-
-        from .growth import SMALL, unite
 
         parts = shapely.get_parts(self.obstacles)
         united = shapely.union_all([self.obstacles, plug]) if len(parts) <= SMALL else unite([*parts, plug])

@@ -18,6 +18,8 @@ from typing import Sequence
 from ..core.errors import InputError
 from ..core.spawnpose import Pose
 from ..core.numbers import format_number
+from .enclosure import obstacle_union
+from .slices import footprints_between
 
 # Radius of the disc that holds each robot's footprint around base_footprint: the farthest corner of the ROBOTIS
 # navigation footprint (burger x -0.105…0.041, y ±0.105; waffle and waffle_pi x -0.205…0.077, y ±0.155). Both
@@ -66,9 +68,6 @@ def world_rooms(scene, radius: float = ROBOT_RADIUS["burger"]) -> Rooms:
     """Slice ``scene`` (a :class:`worldgen.core.scene.Scene`) in the robot's height band (:data:`SLICE_Z`) and find
     its free areas and which of them are closed rooms."""
     import shapely
-
-    from .enclosure import obstacle_union
-    from .slices import footprints_between
 
     prints = footprints_between(scene, *SLICE_Z)
     if not prints:

@@ -9,6 +9,7 @@ from dataclasses import dataclass
 
 from ..core.boxes import box_corners
 from ..core.scene import Scene, Shape
+from .mesh_section import mesh_footprint
 
 SLIVER = 0.0005        # every footprint grows by this much: gaps under 1 mm are closed
 CIRCLE_SEGMENTS = 16   # per quarter circle, for cylinders and spheres
@@ -123,8 +124,6 @@ def _sphere_section(shape: Shape, z: float):
 
 def _mesh_section(shape: Shape, z: float):
     """A mesh's section (see :mod:`.mesh_section`), with a note when it had to be simplified."""
-    from .mesh_section import mesh_footprint
-
     if shape.vertices is None or shape.faces is None:
         return None, None
     return mesh_footprint(shape, _to_world(shape, shape.vertices), z, SLIVER)

@@ -27,7 +27,7 @@ from pathlib import Path
 from typing import Dict, List, Mapping, Optional
 
 from ..core.errors import WorldFileError
-from ..core.packages import PackageIndex
+from ..core.packages import PackageIndex, manifest_name, owning_package
 from .model import LaunchInfo, NodeRef, RobotSpawn, join_ns
 from .gazebo_py import (GAZEBO_LAUNCH, GAZEBO_PACKAGES, NAME_FLAGS, POSE_FLAGS, SPAWNERS, STOCK_SPAWN,
                                command_kind, flag_value, gazebo_world, gz_world, mentions_simulator, robot_model,
@@ -458,8 +458,6 @@ def world(read: PyRead, value, what: str, scope: Scope, line: int | None) -> Non
 
 def _package_of(text: str) -> Optional[str]:
     """The name of the package holding the file ``text`` (None when it is in none)."""
-    from ..core.packages import manifest_name, owning_package
-
     own = owning_package(text, levels=4) if posixpath.isabs(text) else None
     return manifest_name(own / "package.xml") if own is not None else None
 

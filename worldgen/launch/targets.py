@@ -15,7 +15,8 @@ from __future__ import annotations
 
 import re
 
-from ..core.errors import InputError
+from ..core.errors import InputError, WorldgenError
+from ..core.inputs import read_capped
 
 ROS_TARGETS = ("noetic", "humble", "jazzy")
 DEFAULT_ROS = "noetic"
@@ -89,8 +90,6 @@ def check_world_target(path, ros: str) -> None:
     """InputError when the world file ``path`` is not for the simulator ``ros`` starts: Jazzy (Gazebo Sim) needs
     a world naming the systems a TurtleBot3 uses (:data:`TURTLEBOT3_SYSTEMS`); Noetic and Humble (Gazebo Classic)
     cannot load a Gazebo Sim world's systems. A file that is no world is left to the world reader to refuse."""
-    from ..core.errors import WorldgenError
-    from ..core.inputs import read_capped
     from ..core.safexml import parse_bytes
 
     try:

@@ -23,6 +23,7 @@ from .params_xml import ParamError, load_yaml, param_name, rosparam_sets, set_va
     typed_value
 from .substitution_xml import (ArgValue, Lookup, Scope, Unresolved, condition, expand, expand_lenient,
                            expand_or_keep, try_expand)
+from ..core.inputs import read_capped, read_text_capped
 
 XACRO_MODEL = re.compile(r"turtlebot3_([A-Za-z0-9_]+)\.urdf(?:\.xacro)?\b")
 GAZEBO_FLAGS = {"-x": 0, "-y": 1, "-z": 2, "-Y": 3}
@@ -50,7 +51,6 @@ class LaunchRead(Findings):
 
 def parse_launch_xml(path: Path, what: str = "launch file"):
     """The root element of the XML file ``path``; WorldFileError when it cannot be read or is not XML."""
-    from ..core.inputs import read_capped
     from ..core.safexml import parse_bytes
 
     try:
@@ -238,8 +238,6 @@ def _store(read: LaunchRead, name: str, value, scope: Scope, line: int | None) -
 
 def _file_text(read: LaunchRead, raw: str, what: str, scope: Scope, line: int | None) -> str | None:
     """The text of the file a ``textfile=``/``file=`` names (``$(find)`` resolved), or None with a finding."""
-    from ..core.inputs import read_text_capped
-
     try:
         path = Path(expand(read.lookup, raw, scope, find=True))
     except Unresolved as err:

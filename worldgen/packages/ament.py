@@ -29,7 +29,8 @@ from ..core.errors import InputError
 from ..core.resources import render_template
 from ..launch.writer_py import check_ros2, world_package_files
 from .catkin import PackageArgs, PackageFiles, PackageRequest, package_request, spec_world
-from ..launch.targets import world_text
+from ..launch.targets import cmd_vel_type, world_text
+from ..core.fsio import check_free, write_tree
 
 TEST_DEPENDS = ("ament_copyright", "ament_flake8", "ament_pep257", "python3-pytest")
 # What the launch files start, per target (exec_depend): Gazebo and its ROS side, the state publisher, xacro for
@@ -162,9 +163,6 @@ def create_ament_package(parent: str | Path, req: PackageRequest, ros: str, *,
     """Write the ament_python package ``req`` into ``parent/NAME`` all at once (nothing on error); with
     ``world_spec`` its world, launch file (and Jazzy's bridge parameters) too. An existing folder is refused
     unless ``force`` (then it is replaced)."""
-    from ..core.fsio import check_free, write_tree
-    from ..launch.targets import cmd_vel_type
-
     check_ros2(ros)
     cmd_vel_type(ros, cmd_vel)
     target = Path(parent) / req.name

@@ -7,12 +7,12 @@ import re
 from pathlib import Path
 from typing import Callable
 
+from ..core.errors import WorldgenError
+from ..core.inputs import read_capped
+
 
 def file_text(path: Path) -> str:
     """A file's text (capped, never a pipe or device; empty when it cannot be read)."""
-    from ..core.errors import WorldgenError
-    from ..core.inputs import read_capped
-
     try:
         return read_capped(path).decode("utf-8", "replace")
     except (OSError, WorldgenError):

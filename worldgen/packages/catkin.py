@@ -25,8 +25,10 @@ from pathlib import Path
 from typing import Iterable, Mapping, Optional, Sequence, Tuple
 
 from ..core.errors import InputError
-from ..launch.writer_xml import launch_xml
+from ..launch.writer_xml import default_launch_name, launch_xml
 from ..core.resources import render_template
+from ..core.fsio import check_free, write_tree
+from ..launch.spawn import launch_model, spec_spawn
 
 # REP 144: lowercase letters, digits and underscores, starting with a letter.
 PACKAGE_NAME = re.compile(r"^[a-z][a-z0-9_]*$")
@@ -258,7 +260,6 @@ def spec_world(spec_path: str | Path, model: str = "optenv") -> tuple[str, str, 
     """:func:`world_from_spec` and the robot model its launch file starts
     (:func:`worldgen.launch.spawn.launch_model`: the spec's robot when the default is asked)."""
     from ..sdf.writer import spec_world_sdf
-    from ..launch.spawn import launch_model, spec_spawn
     from ..spec.load import load_spec
 
     spec = load_spec(spec_path)
@@ -272,8 +273,6 @@ def world_package_files(spec_path: str | Path, package: str, model: str = "opten
                         ) -> tuple[dict[str, str], dict[str, str]]:
     """(worlds, launches) for a package ``package`` holding the spec's world: ``NAME.world`` and
     ``turtlebot3_in_NAME.launch``."""
-    from ..launch.writer_xml import default_launch_name
-
     world_file, world_text, spawn, model = spec_world(spec_path, model)
     launch_name = default_launch_name(world_file)
     return ({world_file: world_text},
@@ -284,8 +283,6 @@ def create_package(parent: str | Path, req: PackageRequest, *, world_spec: str |
                    force: bool = False) -> Path:
     """Write the package ``req`` into ``parent/NAME`` all at once (nothing on error); with ``world_spec`` its
     world and launch file too. An existing folder is refused unless ``force`` (then it is replaced)."""
-    from ..core.fsio import check_free, write_tree
-
     target = Path(parent) / req.name
     check_free([target], force)
     worlds = launches = None

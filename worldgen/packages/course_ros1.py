@@ -24,8 +24,9 @@ from pathlib import Path
 from ..launch.writer_xml import default_launch_name, launch_xml, parse_node
 from ..core import stoplaw
 from ..core.numbers import format_number
-from ..core.resources import render_template
+from ..core.resources import examples_dir, render_template
 from .catkin import PackageArgs, PackageFiles, PackageRequest, package_files, package_request, world_from_spec
+from ..core.fsio import write_tree
 
 REPOSITORY = "intro_robo"
 WORLD_PACKAGE = "class_meeting_02_custom_gazebo_world"
@@ -52,8 +53,6 @@ def _request(name: str, description: str, maintainer: str | None, exec_only=()) 
 
 def course_files(maintainer: str | None = None) -> PackageFiles:
     """Every file of the class repository, relative to ``src/intro_robo`` (see the module docstring)."""
-    from ..core.resources import examples_dir
-
     world_file, world_text, spawn = world_from_spec(examples_dir() / "enclosed_room.yaml")
     worlds = {world_file: world_text}
     launches = {default_launch_name(world_file): launch_xml(world_file, WORLD_PACKAGE, "optenv", spawn)}
@@ -92,8 +91,6 @@ def course_files(maintainer: str | None = None) -> PackageFiles:
 
 def _line_lab(maintainer: str | None) -> PackageFiles:
     """Lab B: the line follower, with its world (a tape loop) and a launch file that starts a Waffle Pi on it."""
-    from ..core.resources import examples_dir
-
     world_file, world_text, spawn = world_from_spec(examples_dir() / "line_track.yaml", "waffle_pi")
     node = parse_node(f"{LINE_PACKAGE}/line_follower.py")
     launch_name = f"{node.name}.launch"
@@ -109,7 +106,5 @@ def _line_lab(maintainer: str | None) -> PackageFiles:
 def write_course(workspace: str | Path, *, force: bool = False, maintainer: str | None = None) -> Path:
     """Write ``WORKSPACE/src/intro_robo`` all at once (nothing on error). An existing ``intro_robo`` folder is
     refused unless ``force``, which replaces it. Returns the folder."""
-    from ..core.fsio import write_tree
-
     pkg = course_files(maintainer)
     return write_tree(Path(workspace) / "src" / REPOSITORY, pkg.files, force=force, executable=pkg.executable)

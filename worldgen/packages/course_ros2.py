@@ -20,21 +20,20 @@ from __future__ import annotations
 from dataclasses import replace
 from pathlib import Path
 
-from ..core.resources import render_template
+from ..core.resources import examples_dir, render_template
 from .ament import ament_package_files, ament_request, spec_world_files
 from .course_ros1 import LICENSE, REPOSITORY, SPIN, STOP, VERSION, WORLD_PACKAGE
 from ..launch.writer_xml import parse_node
 from ..launch.writer_py import launch_py
 from .catkin import PackageArgs, PackageFiles
 from ..launch.targets import cmd_vel_type
+from ..core.fsio import write_tree
 
 DEPENDENCIES = ("rclpy", "std_msgs", "geometry_msgs", "sensor_msgs")
 
 
 def course_ros2_files(ros: str, cmd_vel: str | None = None, maintainer: str | None = None) -> PackageFiles:
     """Every file of the class's ROS 2 packages for ``ros`` (humble, jazzy), relative to ``src/intro_robo``."""
-    from ..core.resources import examples_dir
-
     stamped = cmd_vel_type(ros, cmd_vel) == "stamped"
 
     def request(name: str, description: str, exec_only=()):
@@ -73,7 +72,5 @@ def write_course_ros2(workspace: str | Path, ros: str, *, cmd_vel: str | None = 
                   maintainer: str | None = None) -> Path:
     """Write ``WORKSPACE/src/intro_robo`` (the ROS 2 packages) all at once (nothing on error). An existing
     ``intro_robo`` folder is refused unless ``force``, which replaces it. Returns the folder."""
-    from ..core.fsio import write_tree
-
     pkg = course_ros2_files(ros, cmd_vel, maintainer)
     return write_tree(Path(workspace) / "src" / REPOSITORY, pkg.files, force=force, executable=pkg.executable)

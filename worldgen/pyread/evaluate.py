@@ -26,6 +26,7 @@ from .stdlib import binary, call_method, call_named, compare, format_value, modu
 from .values import (MAX_CALL_DEPTH, MAX_CALLS, MAX_DEPTH, MAX_ITERATIONS, MAX_PYTHON_BYTES, MAX_SIZE, MAX_WORK,
                      Call, Ctx, Frame, Function, Returned, Symbol, Unknown, describe, first_unknown, not_run, shown,
                      sized, truth)
+from ..core.inputs import read_capped
 
 
 # ------------------------------------------------------------------------------------------- expressions
@@ -464,8 +465,6 @@ def read_module(ctx: Ctx, tree) -> Frame:
 def parse_python(path: Path, what: str = "file"):
     """The module the Python file ``path`` holds, parsed (never run); WorldFileError when it cannot be read or
     parsed (``what`` names the file in the message: "launch file", "setup.py")."""
-    from ..core.inputs import read_capped
-
     try:
         text = read_capped(path, MAX_PYTHON_BYTES, what=what).decode("utf-8")
     except OSError as err:

@@ -12,6 +12,11 @@ from functools import lru_cache
 from pathlib import Path
 
 from ..spec.model import ROBOT_MODELS
+from . import robot_urdf
+from ..core.boxes import box_corners
+from ..core.errors import InputError
+from ..core.numbers import floats
+from .profile import link_frames, origin_of, robot_profile
 
 
 @dataclass(frozen=True)
@@ -34,10 +39,6 @@ class RobotBody:
 @lru_cache(maxsize=8)
 def robot_body(robot: str = "burger") -> RobotBody:
     """The :class:`RobotBody` of a model name or URDF/xacro file (raises InputError for a bad one)."""
-    from ..core.errors import InputError
-    from . import robot_urdf
-    from .profile import robot_profile
-
     urdf = robot_urdf(robot)
     name = str(robot) if str(robot) in ROBOT_MODELS else Path(str(robot)).name
     try:
@@ -51,7 +52,6 @@ def _body_from_urdf(urdf: str, profile, name: str) -> RobotBody:
     import numpy as np
     import shapely
 
-    from .profile import link_frames, origin_of
     from ..core.poses import rpy_matrix
 
     frames = link_frames(profile.joints, profile.root_link)
@@ -85,9 +85,6 @@ def _body_from_urdf(urdf: str, profile, name: str) -> RobotBody:
 def _geometry_points(geometry):
     """Points whose hull bounds a URDF collision geometry, in its own frame (None for meshes and unknowns)."""
     import numpy as np
-
-    from ..core.boxes import box_corners
-    from ..core.numbers import floats
 
     if geometry is None or not len(geometry):
         return None

@@ -19,6 +19,8 @@ import numpy as np
 from ..core import poses
 from ..core.numbers import floats
 from ..core.scene import Shape
+from ..core.errors import WorldgenError
+from .description import absolute_mesh_paths
 
 DARK_GREY = (0.25, 0.25, 0.25, 1.0)
 BLACK = (0.05, 0.05, 0.05, 1.0)
@@ -82,9 +84,6 @@ def _shape(geom: ET.Element, source) -> Shape | None:
 
 
 def _mesh(filename: str, scale, source) -> Shape | None:
-    from ..core.errors import WorldgenError
-    from .description import absolute_mesh_paths
-
     try:
         path = absolute_mesh_paths(filename, source)
     except WorldgenError:

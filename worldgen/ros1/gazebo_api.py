@@ -32,6 +32,7 @@ import numpy as np
 from ..core import poses
 from ..sim.models import matrix_of, pose_of
 from .pose_msgs import fill_pose, fill_twist, pose7
+from .spawner import spawn_model
 
 CALL_TIMEOUT = 10.0   # s of real time a service call waits for the loop
 
@@ -182,8 +183,6 @@ class GazeboApi:
         return res
 
     def spawn(self, req, kind: str):
-        from .spawner import spawn_model
-
         res = self.types["SpawnModel"]()
         res.success, res.status_message = spawn_model(self.bridge, req, kind)
         return res

@@ -20,6 +20,7 @@ import tempfile
 from pathlib import Path
 
 from ..core.errors import InputError
+from .rosenv import import_rospy
 
 MESSAGES = {
     "ModelState": """\
@@ -126,8 +127,6 @@ def gazebo_msgs_path() -> str | None:
 
 
 def _generate(folder: Path) -> None:
-    from .rosenv import import_rospy
-
     import_rospy()   # puts the system's ROS Python (genpy's folder) on sys.path when this is a venv
     try:
         import genpy.generate_initpy

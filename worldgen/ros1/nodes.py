@@ -17,6 +17,7 @@ from typing import Sequence
 
 from ..bridge.outcome import NodeSpec, check_python_file, group_args
 from ..core.errors import InputError
+from ..core import packages
 
 # Packages whose nodes worldgen itself stands in for when a launch file starts them.
 STAND_INS = frozenset({"gazebo_ros", "robot_state_publisher", "joint_state_publisher", "xacro", "rviz",
@@ -60,8 +61,6 @@ def _python_file(path: Path, python: str, args: list[str], name: str | None = No
 
 
 def _index(search: Sequence[str | Path]):
-    from ..core import packages
-
     return packages.PackageIndex([Path(p) for p in search] + packages.ros_package_path())
 
 
@@ -96,7 +95,6 @@ def _launch_nodes(path: Path, python: str, search: Sequence[str | Path], args: l
     if unknown:
         raise InputError(f"the launch file has no arg {unknown[0]!r}", path=path,
                          hint=f"its args are: {', '.join(sorted(info.args)) or 'none'}")
-    from ..core import packages
 
     own = packages.owning_package(path)
     roots = list(search) + ([own, packages.source_tree(own)] if own is not None else [])

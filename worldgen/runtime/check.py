@@ -32,6 +32,7 @@ from ..core.findings import Finding
 from .imports import NodeSource, read_node
 from .naming import Naming
 from .table import provider
+from ..core.packages import crawl, manifest_name, owning_package, source_tree
 
 TIMEOUT = 60.0   # s for the child to answer (it only reads directories)
 
@@ -96,8 +97,6 @@ class NodeReport:
 
 def _own_src(node: Path) -> list[str]:
     """The node's catkin package's own Python folder: its ``src/`` when it has a ``setup.py``."""
-    from ..core.packages import owning_package
-
     package = owning_package(node, levels=4)
     if package is None or not (package / "setup.py").is_file() or not (package / "src").is_dir():
         return []
@@ -107,8 +106,6 @@ def _own_src(node: Path) -> list[str]:
 def _workspace_names(node: Path, cache: dict[Path, set[str]]) -> set[str]:
     """The names of the node's own catkin package and, when it sits in a workspace's source space (a ``src/``
     or a folder with a top-level ``CMakeLists.txt``), of every package there."""
-    from ..core.packages import crawl, manifest_name, owning_package, source_tree
-
     package = owning_package(node, levels=4)
     if package is None:
         return set()

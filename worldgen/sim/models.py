@@ -21,7 +21,8 @@ import pybullet as pb
 
 from ..core import poses
 from ..core.scene import Scene, Shape
-from .scene_loader import DYNAMIC_GROUP, DYNAMIC_MASK, GEOM, SceneBodies, primitive_bodies
+from .scene_loader import (DYNAMIC_GROUP, DYNAMIC_MASK, GEOM, SCENE_GROUP, SCENE_MASK, SURFACE_FRICTION, SceneBodies,
+    primitive_bodies)
 
 Pose7 = Tuple[float, float, float, float, float, float, float]   # x y z qx qy qz qw
 
@@ -231,8 +232,6 @@ def _points(shape: Shape) -> np.ndarray:
 
 
 def _body(client: int, sid: int, mass: float, frame: np.ndarray) -> int:
-    from .scene_loader import SCENE_GROUP, SCENE_MASK, SURFACE_FRICTION
-
     body = pb.createMultiBody(baseMass=mass, baseCollisionShapeIndex=sid, basePosition=frame[:3, 3].tolist(),
                               baseOrientation=list(poses.matrix_quat(frame[:3, :3])), physicsClientId=client)
     pb.changeDynamics(body, -1, lateralFriction=SURFACE_FRICTION, physicsClientId=client)

@@ -7,6 +7,8 @@ from __future__ import annotations
 
 import io
 
+from ..core.mpl import matplotlib_agg
+
 
 def gains_label(run: dict) -> str:
     return f"kp={run['kp']:g} ki={run['ki']:g} kd={run['kd']:g}"
@@ -14,8 +16,6 @@ def gains_label(run: dict) -> str:
 
 def plot_png(result: dict) -> bytes:
     """A PNG of the runs in ``result`` (matplotlib's Agg backend, imported here only)."""
-    from ..core.mpl import matplotlib_agg
-
     matplotlib_agg()
     import matplotlib.pyplot as plt
 

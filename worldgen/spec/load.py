@@ -24,6 +24,8 @@ from .nodes import Node, compose
 from .objects import read_obstacle, read_robot
 from .values import Source
 from .walls import read_room, read_segment, read_style
+from ..core.resources import render_template
+from .maps import IMAGE_SUFFIXES, is_map_yaml, map_spec, spec_map_parts
 
 
 def spec_beside(world_path: str | Path) -> tuple[Path, Spec] | None:
@@ -44,8 +46,6 @@ def load_spec(path: str | Path) -> Spec:
     file), or a ROS map_server map's YAML (a YAML with an ``image`` key: its occupied pixels become walls, the world
     is named after the file; see :mod:`worldgen.spec.maps`). Raises SpecError naming the file and line of the first
     problem."""
-    from .maps import IMAGE_SUFFIXES   # imported when a spec is read, not when worldgen starts
-
     path = Path(path)
     if path.suffix.lower() in IMAGE_SUFFIXES:
         raise SpecError("is an image, not a spec", path=path,
@@ -81,8 +81,6 @@ def starter_spec(name: str, template: str = "room") -> str:
     """The commented starter spec ``worldgen new NAME`` writes: by default (``room``) a closed 5 m × 5 m room with
     a window, an obstacle and the robot in the middle, a door offered commented out; ``line-track`` a closed
     4 × 3 m room with a loop of yellow tape on its floor and a Waffle Pi on the tape (``templates/spec/``)."""
-    from ..core.resources import render_template
-
     check_name(name, "the world name")
     return render_template(STARTERS[template], name=name)
 
@@ -96,7 +94,6 @@ def read_spec(src: Source, root: Node | None) -> Spec:
     if not isinstance(root.value, dict):
         src.fail(f"a spec must be a block of keys (name:, walls:, rooms: …), not {describe(root.value)}",
                  root.line, hint="start from the one `worldgen new NAME` writes")
-    from .maps import is_map_yaml, map_spec, spec_map_parts   # imported when a spec is read, not at start-up
 
     if is_map_yaml(root.value):   # a ROS map_server map's own YAML
         return map_spec(src, root)

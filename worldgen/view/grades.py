@@ -15,6 +15,12 @@ from typing import Callable, Sequence
 
 from ..check.report import Result
 from .page import Panel, render_page, replay_page, world_source
+from ..core.errors import InputError, WorldgenError
+from ..core.fsio import write_tree
+from ..spec.model import ROBOT_MODELS
+from .index import index_page, index_rows
+from .replay import run_replay
+from .scene_data import read_source, world_data
 
 INDEX = "index.html"
 PAGES = "pages"
@@ -38,8 +44,6 @@ def page_names(names: Sequence[str]) -> list[str]:
 
 def panel(result: Result) -> dict:
     """What a submission's page shows beside the world: its verdict, metrics (the index's) and findings."""
-    from .index import index_rows
-
     row = index_rows([result])[0]
     text = {"ok": "pass", "warn": "pass, with warnings", "FAIL": "fail"}[result.verdict]
     graded = row["task"] or ("run" if row["kind"] == "run" else "validate")
@@ -50,8 +54,6 @@ def panel(result: Result) -> dict:
 def check_report_folder(folder: Path) -> None:
     """Refuse (InputError) a ``--html`` folder that holds anything but a report an earlier ``--html`` wrote (its
     index, with :data:`MARKER`, and ``pages/*.html``): the folder is replaced as a whole."""
-    from ..core.errors import InputError
-
     if not folder.exists() and not folder.is_symlink():
         return
     if not folder.is_dir() or folder.is_symlink():
@@ -74,9 +76,6 @@ def check_report_folder(folder: Path) -> None:
 
 def write_report(folder: Path, results: list[Result], page_of: Callable[[Result], bytes | None], title: str) -> Path:
     """The index and every page ``page_of`` gives (None: a row without a page), written as ``folder``."""
-    from ..core.fsio import write_tree
-    from .index import index_page, index_rows
-
     files: dict[str, bytes] = {}
     hrefs: list[str | None] = []
     for result, name in zip(results, page_names([r.name for r in results])):
@@ -108,10 +107,6 @@ def validate_page(result: Result, model_paths=()) -> bytes | None:
     could not be read)."""
     import dataclasses
 
-    from ..core.errors import WorldgenError
-    from ..spec.model import ROBOT_MODELS
-    from .scene_data import read_source, world_data
-
     path = Path(result.path)
     if not path.is_file():
         return None
@@ -129,8 +124,6 @@ def run_page(result: Result, world, trace: dict, title: str | None = None, back:
     """A graded run's page: the world it ran in (``world``: :class:`worldgen.bridge.world.World`, or anything with
     its ``path``, ``scene``, ``spawn`` and ``robot``), the robot replayed along its trace, the verdict and
     findings; ``back``: a link to the index (:data:`BACK` in a report folder)."""
-    from .replay import run_replay
-
     source = world_source(world.path, world.scene, world.spawn, world.robot)
     return replay_page(source, run_replay(trace), Panel(title or result.name, f"in {Path(str(world.path)).name}",
                                                         back=back, **panel(result)))

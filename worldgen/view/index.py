@@ -22,6 +22,7 @@ from typing import Iterable, Sequence
 from urllib.parse import quote
 
 from ..check.report import Result, _clean
+from ..core.resources import templates_dir
 
 TEMPLATE = "view/index.html.j2"
 RUN_CHECKS = ("node", "runtime")   # a Result whose first check is one of these is a run's, not validate's
@@ -297,8 +298,6 @@ def _env():
     env = _ENV.get("env")
     if env is None:
         import jinja2
-
-        from ..core.resources import templates_dir
 
         env = jinja2.Environment(loader=jinja2.FileSystemLoader(str(templates_dir())), autoescape=True,
                                  undefined=jinja2.StrictUndefined, keep_trailing_newline=True, trim_blocks=True,

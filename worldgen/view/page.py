@@ -16,6 +16,12 @@ from pathlib import Path
 from typing import Optional, Sequence, Tuple
 
 from ..core.findings import Finding
+from ..check.sources import WorldSource
+from ..core.errors import InputError, WorldgenError
+from ..core.resources import render_template, templates_dir
+from .replay import drive_replay
+from .scene_data import ShownWorld, read_source, static_models, world_data, world_title
+from .vendor import THREE_VERSION, modules
 
 LIBRARIES = ("three", "BufferGeometryUtils", "GLTFLoader", "OrbitControls")
 _CLOSERS = re.compile(r"</script|<!--", re.IGNORECASE)
@@ -25,8 +31,6 @@ def _script_text(name: str, text: str) -> str:
     """``text`` to inline in a ``<script>`` element, refused if it could end the element early."""
     found = _CLOSERS.search(text)
     if found:
-        from ..core.errors import WorldgenError
-
         raise WorldgenError(f"{name} cannot be inlined in a page: it holds {found.group(0)!r}",
                             hint="please report this to the worldgen developers")
     return text
@@ -35,8 +39,6 @@ def _script_text(name: str, text: str) -> str:
 def require_three() -> None:
     """Fail now (WorldgenError, one line) when this installation has no three.js: before a run whose page could
     not be written after it."""
-    from .vendor import modules
-
     modules()
 
 
@@ -55,8 +57,6 @@ def data_json(data: dict) -> str:
 
 
 def _template_text(name: str) -> str:
-    from ..core.resources import templates_dir
-
     return (templates_dir() / "view" / name).read_text(encoding="utf-8")
 
 
@@ -88,9 +88,6 @@ class Panel:
 
 def render_page(data: dict, panel: Panel) -> bytes:
     """The HTML page for ``data`` (a world's, with ``replay`` for a run), ``panel`` beside it."""
-    from ..core.resources import render_template
-    from .vendor import THREE_VERSION, modules
-
     from markupsafe import Markup
 
     libraries = modules()
@@ -114,9 +111,6 @@ def world_page(path: str | Path, *, spawn: tuple[float, float, float] | None = N
     """The page of a world file, a spec or a launch file: the world as Gazebo draws it, the robot at its spawn
     pose (``spawn``/``robot`` override what the input says), LiDAR rays from there with ``lidar``."""
     import dataclasses
-
-    from ..core.errors import InputError
-    from .scene_data import read_source, world_data
 
     source = read_source(path, model_paths)
     if spawn is not None:
@@ -173,8 +167,6 @@ def world_source(path: str | Path, scene, spawn=None, robot: str = "burger"):
     import dataclasses
 
     from ..check.validate import input_kind
-    from ..check.sources import WorldSource
-    from .scene_data import ShownWorld, read_source, static_models, world_title
 
     path = Path(path)
     if path.is_file() and input_kind(path) == "spec":
@@ -188,8 +180,6 @@ def world_source(path: str | Path, scene, spawn=None, robot: str = "burger"):
 def replay_page(source, replay: dict, panel: Panel) -> bytes:
     """The page of a run: the world of ``source`` (:func:`world_source`), the robot replayed along ``replay``
     (:mod:`.replay`), ``panel`` (the verdict, metrics and findings) beside it."""
-    from .scene_data import world_data
-
     data = world_data(source)
     data["replay"] = replay
     data["robot"]["spawn"] = [replay["x"][0], replay["y"][0], replay["yaw"][0]] if replay["t"] else \
@@ -202,9 +192,6 @@ def drive_page(world: str | Path, result: dict, model_paths: Sequence[str | Path
     """The page of ``worldgen drive``'s first run (:func:`worldgen.sim.exercise.drive_exercise`'s result, with
     its scans recorded): the world, the robot replayed, the numbers the text report gives and why it failed."""
     import dataclasses
-
-    from .replay import drive_replay
-    from .scene_data import read_source
 
     source = dataclasses.replace(read_source(world, model_paths), spawn=tuple(result["spawn"]), robot=result["robot"])
     run = result["runs"][0]

@@ -21,6 +21,12 @@ from ..check.sources import WorldSource
 from ..core.scene import Scene
 from ..spec.load import load_spec
 from ..spec.model import SPEC_SUFFIXES, Spec
+from ..core.mpl import matplotlib_agg
+from ..geometry.markings import floor_markings, footprint
+from ..geometry.placement import ROBOT_RADIUS, SLICE_Z
+from ..geometry.slices import footprints_between
+from ..sim.process import run_isolated
+from .scene_data import spec_source
 
 FIGSIZE = (8.0, 8.0)   # inches
 DPI = 100              # so a picture is 800 × 800 pixels
@@ -75,8 +81,6 @@ def is_spec_path(path: str | Path) -> bool:
 def spec_picture(spec: Spec) -> Picture:
     """A spec's picture: its geometry written as SDF and read back (:func:`.scene_data.spec_source`), plus its
     openings and spawn pose."""
-    from .scene_data import spec_source
-
     source = spec_source(spec)
     spawn = Spawn(*source.spawn, spec.robot.model) if spec.robot else None
     walls = frozenset(s.label for s in source.scene.shapes if s.model in source.walls)
@@ -131,8 +135,6 @@ def render(pic: Picture, rays: Sequence[Ray] | None = None) -> bytes:
     """Draw ``pic`` (and LiDAR ``rays``, if given) as PNG bytes, 800 × 800 px, the same bytes for the same input."""
     import io
 
-    from ..core.mpl import matplotlib_agg
-
     matplotlib = matplotlib_agg()
     with matplotlib.rc_context(_default_style()):
         fig = figure(pic, rays)
@@ -143,8 +145,6 @@ def render(pic: Picture, rays: Sequence[Ray] | None = None) -> bytes:
 
 def figure(pic: Picture, rays: Sequence[Ray] | None = None):
     """The matplotlib Figure :func:`render` saves (its first axes are the plan, in metres)."""
-    from ..core.mpl import matplotlib_agg
-
     matplotlib = matplotlib_agg()
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
@@ -176,9 +176,6 @@ def draw_plan(ax, pic: Picture, rays: Sequence[Ray] | None = None):
     first floor marking's colour or None), for the caller's limits and legend (:func:`figure`; the contact sheet
     of :mod:`.sheet`)."""
     from matplotlib.collections import LineCollection
-
-    from ..geometry.slices import footprints_between
-    from ..geometry.placement import ROBOT_RADIUS, SLICE_Z
 
     bounds = _Bounds()
     prints = footprints_between(pic.scene, SLICE_Z[0], SLICE_Z[1])
@@ -218,8 +215,6 @@ def _draw_markings(ax, scene: Scene, bounds: "_Bounds"):
     or None when there are none."""
     import shapely
 
-    from ..geometry.markings import floor_markings, footprint
-
     found = sorted(floor_markings(scene), key=lambda m: m.top)
     for marking in found:
         for colour in marking.colors:
@@ -233,8 +228,6 @@ def _draw_markings(ax, scene: Scene, bounds: "_Bounds"):
 
 def _default_style() -> dict:
     """matplotlib's default settings, so that a user's matplotlibrc cannot change the picture."""
-    from ..core.mpl import matplotlib_agg
-
     matplotlib = matplotlib_agg()
 
     style = {k: v for k, v in matplotlib.rcParamsDefault.items() if k not in ("backend", "interactive")}
@@ -345,8 +338,6 @@ def lidar_rays(pic: Picture, spawn: Spawn, model_paths: Sequence[str | Path] = (
     """One noiseless LiDAR scan of the robot at ``spawn`` in ``pic``'s world, simulated in a child process
     (pybullet, see :mod:`worldgen.sim.process`): a ray per beam from the sensor to its hit, or to the sensor's
     range where it hits nothing."""
-    from ..sim.process import run_isolated
-
     reply = run_isolated(f"{__name__}:scan_rays", {
         "world": str(pic.world.path) if pic.world else None, "world_text": pic.world.text if pic.world else None,
         "model_paths": [str(p) for p in model_paths],

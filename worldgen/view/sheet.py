@@ -16,6 +16,8 @@ from pathlib import Path
 from typing import List, Sequence
 
 from ..core.errors import InputError
+from ..check.discover import find_loose
+from ..core.mpl import matplotlib_agg
 
 MAX_WORLDS = 400          # panels on one sheet
 PANEL = 2.6               # inches per panel when the sheet is small …
@@ -26,8 +28,6 @@ MARGIN = 0.4              # m round the widest world
 
 def sheet_inputs(folder: str | Path) -> List[Path]:
     """The worlds and specs of ``folder`` to draw, in natural order; InputError when it holds none."""
-    from ..check.discover import find_loose
-
     folder = Path(folder)
     found = [path for _, path in find_loose(folder)]
     if not found:
@@ -64,7 +64,6 @@ def render_sheet(pictures, title: str) -> bytes:
     """Draw (path, :class:`~worldgen.view.preview.Picture`) pairs as one sheet: PNG bytes."""
     import io
 
-    from ..core.mpl import matplotlib_agg
     from .preview import _default_style
 
     matplotlib = matplotlib_agg()
@@ -76,8 +75,6 @@ def render_sheet(pictures, title: str) -> bytes:
 
 
 def _figure(pictures, title: str):
-    from ..core.mpl import matplotlib_agg
-
     matplotlib_agg()
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
