@@ -13,6 +13,7 @@ from __future__ import annotations
 import io
 
 from ..robots.cameras import CameraParams, camera_topic
+from ..sim.camera import encoded
 from .robot import header
 from .topics import frame
 
@@ -43,8 +44,6 @@ class CameraIO:
                 "r": [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0], "p": list(c.P)}
 
     def image(self, rgb, t: float) -> dict:
-        from ..sim.camera import encoded
-
         data, step = encoded(rgb, self.camera.encoding)
         return {"header": header(t, self.frame_id), "height": self.camera.height, "width": self.camera.width,
                 "encoding": self.camera.encoding, "is_bigendian": 0, "step": step, "data": data}

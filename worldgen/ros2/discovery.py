@@ -21,7 +21,10 @@ import threading
 from dataclasses import dataclass
 from typing import Any, Iterable
 
-from .participant import Participant, gid
+from ..interface.topics import camera_topics, topics
+from . import msgs
+from .participant import Participant, endpoint_qos, gid
+from .typehash import type_hash as hash_of
 
 TOPIC = "ros_discovery_info"
 UNKNOWN = "_NODE_NAME_UNKNOWN_"   # what rmw names an endpoint no participant has announced
@@ -75,16 +78,12 @@ class Graph:
         from cyclonedds.pub import DataWriter
         from cyclonedds.sub import DataReader
 
-        from . import msgs
-        from .participant import endpoint_qos
 
         self.participant = participant
         self.distro = distro
         self._gid_t, self._node_t, self._info_t, self._gid_size = msgs.DISCOVERY[distro]
         type_hash = None
         if distro == "jazzy":
-            from .typehash import type_hash as hash_of
-
             type_hash = hash_of("rmw_dds_common/msg/ParticipantEntitiesInfo")
         dp = participant.dp
         topic = participant.topic(TOPIC, self._info_t, prefix="")
@@ -133,8 +132,6 @@ class Graph:
 
     def look(self) -> None:
         """Read what has come: others' announcements, the alive participants and endpoints."""
-        from . import msgs
-
         own = self.participant.gid
         for sample in self.reader.take(N=1024):
             raw = bytes(sample.gid.data)[:16]
@@ -216,8 +213,6 @@ def announce(participant: Participant, wire: Any) -> Graph:
     """Announce the simulator's endpoints (``worldgen.ros2.node``'s wire: its shared writers, each robot's writers,
     ``cmd_vel`` reader and cameras) under the nodes the stack's Gazebo has (:mod:`worldgen.interface.topics`'s
     ``node`` column), a robot's in its namespace; the :class:`Graph`, published."""
-    from ..interface.topics import camera_topics, topics
-
     graph = Graph(participant, "humble" if wire.stack == "humble" else "jazzy")
     table = topics(wire.stack)
     for key, writer in wire.writers.items():

@@ -38,6 +38,7 @@ from . import msgs
 from .encode import build, velocity
 from .discovery import announce
 from .participant import Discovery, Participant, endpoint_qos
+from .typehash import type_hash
 
 START_WAIT = 30.0        # s of real time to wait for the start
 SETTLE = 0.2             # s of real time after the nodes' endpoints first match, for the rest to match
@@ -181,8 +182,6 @@ class DdsWire(Wire):
     def type_hash(self, ros_type: str) -> str | None:
         if self.stack != "jazzy":   # Humble's rmw puts no type hash in USER_DATA
             return None
-        from .typehash import type_hash
-
         return type_hash(ros_type)
 
     def send(self, writer, cls, values: dict) -> None:

@@ -16,6 +16,7 @@ from ..bridge.supervise import Supervisor
 from ..bridge.world import World, write_config
 from ..core.errors import InputError
 from ..interface.topics import topics
+from .participant import Discovery
 from .pyenv import require_cyclonedds
 
 
@@ -31,8 +32,6 @@ def sim(world: World, *, stack: str, cmd_vel: str | None, rate: float, duration:
         say: Callable[[str], None] = lambda text: print(text, file=sys.stderr, flush=True)) -> int:
     """Run the ROS 2 simulator on ``world`` (see the module docstring); its exit code (0 after Ctrl-C)."""
     require_cyclonedds()
-    from .participant import Discovery   # cyclonedds is there now
-
     domain = domain_id()
     discovery = Discovery.from_env()
     if discovery.range == "off":

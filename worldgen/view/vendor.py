@@ -30,8 +30,6 @@ import urllib.request
 from pathlib import Path
 from typing import Dict, Optional
 
-from ..core.errors import WorldgenError
-
 try:
     from ..core.errors import WorldgenError as _ErrorBase
 except ImportError:   # loaded by file path (the build hook): no package around this module
@@ -99,6 +97,8 @@ def modules() -> Dict[str, str]:
     """The texts of the vendored files by the names a page uses (``three``, ``OrbitControls``, ``GLTFLoader``,
     ``BufferGeometryUtils``) and ``LICENSE``."""
     if not is_vendored(FOLDER):
+        from ..core.errors import WorldgenError   # here: the build hook loads this file alone, with no package
+
         raise WorldgenError(
             f"three.js is missing from this installation of worldgen ({FOLDER})",
             hint=f"reinstall worldgen with pip (its build fetches three@{THREE_VERSION} from the npm registry) "
