@@ -4,14 +4,18 @@
 
 :func:`simulate` is what the validating process starts in a child (``run_isolated(
 "worldgen.check.sim_job:simulate", kwargs)``). The parent hands over the scene it already read, pickled into
-its own private temporary folder, so a world is read once per validation and the simulator drives in exactly
-the scene the geometric checks looked at. :func:`sim_numbers` is the same job on a scene in this process.
+its own private temporary folder, so the simulator drives in exactly the scene the geometric checks looked at;
+or, to start before the parent has read it, the child reads the same world itself and says what it read
+(:func:`scene_digest`), for the parent to check. :func:`sim_numbers` is the same job on a scene in this process.
 """
 
 from __future__ import annotations
 
+import hashlib
 import math
+import pickle
 import time
+from pathlib import Path
 
 from ..core.scene import Scene
 from ..core.stoplaw import StopLaw
@@ -23,14 +27,40 @@ SPIN_OMEGA = 1.5            # rad/s: within both the burger's (2.84) and the waf
 STOP_KP = 1.0
 STOP_SPEED = 0.22           # m/s: the burger's top speed
 FACE_TOLERANCE = math.radians(2)
+STILL_TO_JUDGE = 1.0        # s: stop-at-wall ends once the robot has held still this long (nothing changes after)
 
 
-def simulate(scene_file: str, robot: str = "burger", spawn: list[float] = (0.0, 0.0, 0.0), no_hit: str = "inf",
-             stage_file: str | None = None, urdf: str | None = None) -> dict:
+def simulate(scene_file: str | None = None, robot: str = "burger", spawn: list[float] = (0.0, 0.0, 0.0),
+             no_hit: str = "inf", stage_file: str | None = None, urdf: str | None = None,
+             world: dict | None = None) -> dict:
     """The job in a child process: :func:`sim_numbers` on the scene pickled in ``scene_file`` (written by the
     parent into its own temporary folder), with the robot's URDF text when the parent has processed it; the
-    record as JSON-able values (:meth:`SimNumbers.to_dict`)."""
-    return sim_numbers(Scene.load(scene_file), robot, spawn, no_hit, stage_file, urdf).to_dict()
+    record as JSON-able values (:meth:`SimNumbers.to_dict`).
+
+    With ``world`` instead ({"path", "text" (a spec's SDF, or None), "model_paths"}, a
+    :class:`~worldgen.check.sources.WorldSource`) the child reads the world itself, while the parent reads it
+    too, and adds ``scene_digest`` (:func:`scene_digest` of what it read): the parent compares it with its own
+    scene's, and simulates its own scene after all when they differ (the file changed between the reads)."""
+    if scene_file is not None:
+        return sim_numbers(Scene.load(scene_file), robot, spawn, no_hit, stage_file, urdf).to_dict()
+    from .sources import WorldSource
+
+    _write_stage(stage_file, "reading the world")
+    scene = WorldSource(Path(world["path"]), world.get("text")).read(world.get("model_paths", ()))
+    numbers = sim_numbers(scene, robot, spawn, no_hit, stage_file, urdf).to_dict()
+    numbers["scene_digest"] = scene_digest(scene)
+    return numbers
+
+
+def scene_digest(scene: Scene) -> str:
+    """A digest of everything in ``scene`` (its pickle, as :meth:`Scene.save` writes it)."""
+    return hashlib.sha256(pickle.dumps(scene, protocol=pickle.HIGHEST_PROTOCOL)).hexdigest()
+
+
+def _write_stage(stage_file: str | None, text: str) -> None:
+    if stage_file:
+        with open(stage_file, "w", encoding="utf-8") as fh:
+            fh.write(text)
 
 
 def sim_numbers(scene: Scene, robot: str = "burger", spawn=(0.0, 0.0, 0.0), no_hit: str = "inf",
@@ -46,9 +76,7 @@ def sim_numbers(scene: Scene, robot: str = "burger", spawn=(0.0, 0.0, 0.0), no_h
     from ..sim.session import Session
 
     def stage(text: str) -> None:
-        if stage_file:
-            with open(stage_file, "w", encoding="utf-8") as fh:
-                fh.write(text)
+        _write_stage(stage_file, text)
 
     started = time.perf_counter()
     stage("loading the world and the robot")
@@ -107,7 +135,7 @@ def _touched(contacts: list[dict]) -> tuple[str, ...]:
 
 def _stop_at_wall(session) -> Stopped:
     """Face the nearest wall when nothing is in range straight ahead, then run the P controller to the target."""
-    from ..sim.behaviours import stop_at_wall   # pybullet: only the child process needs it
+    from ..sim.behaviours import Ending, stop_at_wall   # pybullet: only the child process needs it
     from ..sim.lidar import front_distance
 
     scan = session.scan(noise=False)
@@ -126,7 +154,8 @@ def _stop_at_wall(session) -> Stopped:
     # long enough to cross the whole LiDAR range: what is ahead may change as the robot passes obstacles
     duration = (scan.range_max - STOP_TARGET) / STOP_SPEED + 10.0
     start_t = session.t
-    run = stop_at_wall(session, StopLaw(target=STOP_TARGET, kp=STOP_KP, max_speed=STOP_SPEED), duration=duration)
+    run = stop_at_wall(session, StopLaw(target=STOP_TARGET, kp=STOP_KP, max_speed=STOP_SPEED),
+                       duration=Ending(duration, still=STILL_TO_JUDGE))
     return Stopped(distance=run.final_distance, touched=_touched(run.contacts),
                    contact_points=touches(run.contacts), time=session.t - start_t, start_distance=ahead,
                    turned_to_face=turned, overshoot=run.overshoot,

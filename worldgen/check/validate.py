@@ -29,11 +29,12 @@ from typing import Callable, Sequence
 
 from .camera_view import check_camera
 from .checks import (GEOMETRIC_CHECKS, SDFORMAT_ABSENT, SIM_CHECKS, check_enclosed, check_parse,
-                     check_spawn_clear, check_sdformat, floor_under, robot_body, sim_findings)
+                     check_spawn_clear, check_sdformat, floor_under, robot_body)
 from ..core.errors import InputError, SpecError, WorldFileError
 from ..core.inputs import check_regular
 from ..core.spawnpose import plan_pose
 from ..core.findings import Finding
+from . import sim_run
 from .report import Result
 from .sources import WorldSource
 from ..spec.load import spec_beside
@@ -401,15 +402,23 @@ def _skip_rest(result: Result, why: str, options: Options) -> Result:
 
 
 def _run_world(result: Result, source: WorldSource, options: Options) -> list[Result]:
-    """Read the world and check it, with a temporary folder of the job's own (only this user can read it)."""
+    """Read the world and check it, with a temporary folder of the job's own (only this user can read it). With
+    the spawn known already, the simulation starts first, reading the world itself (:mod:`.sim_run`)."""
     with tempfile.TemporaryDirectory(prefix="worldgen_validate_") as tmp:
-        return _check_world(result, source, options, Path(tmp))
+        early = sim_run.start_early(result, source, options, Path(tmp), SIM_JOB)
+        try:
+            return _check_world(result, source, options, Path(tmp), early)
+        finally:
+            if early is not None:   # not waited for (the world could not be read here): stopped
+                early.cancel()
 
 
-def _check_world(result: Result, source: WorldSource, options: Options, tmp: Path) -> list[Result]:
+def _check_world(result: Result, source: WorldSource, options: Options, tmp: Path, early=None) -> list[Result]:
     result.checks.append("parse")
     try:
         scene = source.read(tuple(options.model_paths))
+        if early is not None:
+            early.read(scene)
     except WorldFileError as err:
         result.findings.append(_parse_error(err, source.path))
         scene = None
@@ -423,7 +432,7 @@ def _check_world(result: Result, source: WorldSource, options: Options, tmp: Pat
         result.findings += outcome.findings
         result.metrics.update(outcome.metrics)
     if result.spawn is not None:
-        return [_check_from(result, scene, options, tmp)]
+        return [_check_from(result, scene, options, tmp, early)]
     from .nospawn import default_spawns
 
     results = []
@@ -435,21 +444,28 @@ def _check_world(result: Result, source: WorldSource, options: Options, tmp: Pat
     return results
 
 
-def _check_from(result: Result, scene, options: Options, tmp: Path) -> Result:
-    """The checks of ``scene`` from the result's spawn."""
-    body = robot_body(result.robot)
-    ground, floor = floor_under(scene, result.spawn)
-    result.metrics.update(floor)
-    for name, check in (("enclosed", check_enclosed), ("spawn-clear", check_spawn_clear)):
-        result.checks.append(name)
-        outcome = check(scene, result.spawn, body, ground)
-        result.findings += outcome.findings
-        result.metrics.update(outcome.metrics)
-    if options.skip_sim:
+def _check_from(result: Result, scene, options: Options, tmp: Path, early=None) -> Result:
+    """The checks of ``scene`` from the result's spawn. The simulation (``early``, or started now) runs while the
+    geometric checks do here, under ``worldgen validate`` (a fork server)."""
+    sim = None if options.skip_sim else early or sim_run.start_sim(result, scene, options, tmp, SIM_JOB)
+    try:
+        body = robot_body(result.robot)
+        ground, floor = floor_under(scene, result.spawn)
+        result.metrics.update(floor)
+        for name, check in (("enclosed", check_enclosed), ("spawn-clear", check_spawn_clear)):
+            result.checks.append(name)
+            outcome = check(scene, result.spawn, body, ground)
+            result.findings += outcome.findings
+            result.metrics.update(outcome.metrics)
+    except BaseException:   # no simulation left running for a job that failed here
+        if sim is not None:
+            sim.cancel()
+        raise
+    if sim is None:
         for name in SIM_CHECKS:
             result.skipped[name] = "--skip-sim"
         return result
-    _simulate(result, scene, options, ground, floor["floor"], tmp)
+    sim_run.judge(result, sim, scene, options, (ground, floor["floor"]), tmp, SIM_JOB)
     return result
 
 
@@ -480,68 +496,6 @@ def _sdformat(result: Result, source: WorldSource, options: Options, tmp: Path) 
     result.checks.append("sdformat")
     result.findings += outcome.findings
     result.metrics.update(outcome.metrics)
-
-
-def _simulate(result: Result, scene, options: Options, ground: float, floor: str | None, tmp: Path) -> None:
-    """The simulated checks on ``scene`` in one child process (the scene handed over pickled, in the job's
-    temporary folder ``tmp``); a crash, a timeout or an error there becomes one error finding naming the
-    stage it happened in, and the checks it prevented are skipped."""
-    from ..core.errors import WorldgenError
-    from ..robots import robot_urdf
-    from ..sim.process import SimCrashed, SimError
-    from .sources import run_on_scene
-
-    stage_file = tmp / "stage"
-    kwargs = {"robot": result.robot, "spawn": list(result.spawn),
-              "no_hit": options.lidar_no_hit, "stage_file": str(stage_file),
-              "urdf": robot_urdf(result.robot)}   # processed once here (robot_body did), not xacro'd per child
-    try:
-        numbers = run_on_scene(SIM_JOB, scene, kwargs, options.sim_timeout, tmp)
-        failure = None
-    except SimCrashed as err:
-        what = (f"did not finish within {options.sim_timeout:g} s" if err.timed_out else
-                f"crashed ({_exit_text(err.rc)})")
-        failure = f"pybullet {what} while {_stage(stage_file)}"
-    except SimError as err:
-        failure = f"the simulation failed while {_stage(stage_file)}: {err}"
-    except WorldgenError as err:
-        failure = f"the simulation could not run ({_stage(stage_file)}): {err}"
-    if failure is not None:
-        result.checks.append("settle")
-        result.findings.append(Finding("settle", "error", failure,
-                                       fix="--skip-sim checks this world without the simulator; please report "
-                                           "the world to the worldgen developers if it loads in Gazebo"))
-        for name in SIM_CHECKS[1:]:
-            result.skipped[name] = "the simulation did not run to the end"
-        return
-    result.checks += [name for name in SIM_CHECKS if name in numbers["ran"]]
-    for name in SIM_CHECKS:
-        if name not in numbers["ran"]:
-            result.skipped[name] = "not possible with this robot"
-    outcome = sim_findings(numbers, options.lidar_no_hit, ground, floor)
-    result.findings += outcome.findings
-    result.metrics.update(outcome.metrics)
-    result.metrics["sim_seconds"] = numbers.get("sim_seconds")   # (not its wall time: reports are deterministic)
-
-
-def _stage(stage_file: Path) -> str:
-    try:
-        return stage_file.read_text(encoding="utf-8").strip() or "starting"
-    except OSError:
-        return "starting"
-
-
-def _exit_text(rc: int | None) -> str:
-    if rc is None:
-        return "no exit code"
-    if rc < 0:
-        import signal
-
-        try:
-            return f"killed by {signal.Signals(-rc).name}"
-        except ValueError:
-            return f"killed by signal {-rc}"
-    return f"exit code {rc}"
 
 
 def run_jobs(planned: Sequence[Job], options: Options, workers: int = 1,

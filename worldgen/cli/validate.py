@@ -50,6 +50,25 @@ def validate(paths, robot, spawn, launch_file, model_paths, fmt, junit, jobs, li
     A missing path is a failed result of its own. Progress goes to stderr (a bar on a terminal, a line per
     file otherwise). Exit status: 0 every check passed (warnings allowed), 1 a check failed, 2 bad input.
     """
+    from contextlib import nullcontext
+
+    from ..sim.forkserver import forking
+
+    # first, while this process runs no thread and has imported little: the simulations' fork server, which
+    # imports pybullet and the simulator while this process reads the inputs
+    with nullcontext() if skip_sim else forking(SIM_MODULES):
+        _validate(paths, robot, spawn, launch_file, model_paths, fmt, junit, jobs, lidar_no_hit, shard, skip_sim,
+                  sdformat, html)
+
+
+# what the simulations use, imported once in the server: the job, the reader (a small world's job reads it
+# itself: check.sim_run), pybullet and the session (a client connected ahead: sim.session.warm)
+SIM_MODULES = ("worldgen.check.sim_job", "worldgen.check.sources", "worldgen.sdf.reader", "worldgen.sim.session:warm",
+               "worldgen.sim.behaviours", "worldgen.sim.lidar")
+
+
+def _validate(paths, robot, spawn, launch_file, model_paths, fmt, junit, jobs, lidar_no_hit, shard, skip_sim,
+              sdformat, html):
     from ..core.fsio import write_file
     from ..check.report import to_json, to_junit, to_text
     from ..core.spawnpose import parse_spawn

@@ -7,9 +7,11 @@ package.
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 PACKAGE_DIR = Path(__file__).resolve().parent.parent   # the worldgen package
+ENV_CACHE = "WORLDGEN_CACHE"   # where worldgen keeps what it made once (processed robots, generated types)
 
 
 def _data_dir(name: str) -> Path:
@@ -32,6 +34,15 @@ def examples_dir() -> Path:
 def robots_dir() -> Path:
     """The folder of our TurtleBot3 descriptions (a ROS package folder: package.xml + urdf/)."""
     return PACKAGE_DIR / "robots" / "worldgen_turtlebot3"
+
+
+def cache_dir() -> Path:
+    """Where worldgen keeps what it made and may reuse: ``WORLDGEN_CACHE``, else ``$XDG_CACHE_HOME/worldgen``,
+    else ``~/.cache/worldgen`` (not created here)."""
+    if os.environ.get(ENV_CACHE):
+        return Path(os.environ[ENV_CACHE])
+    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    return Path(base) / "worldgen"
 
 
 def render_template(template: str, **context) -> str:

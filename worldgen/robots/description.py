@@ -104,29 +104,58 @@ def robot_urdf(robot: str | Path = "burger", mappings: dict[str, str] | None = N
         return text
     if mappings is None and robot in MODELS:
         return _model_urdf(str(robot))
-    return _process_xacro(path, dict(mappings or {}))
+    return _xacro_urdf(path, dict(mappings or {}))
 
 
 @functools.lru_cache(maxsize=None)
 def _model_urdf(model: str) -> str:
     """Our own description of ``model``, processed once per process (the files ship with worldgen)."""
-    return _process_xacro(robot_file(model), {})
+    return _xacro_urdf(robot_file(model), {})
 
 
-def _process_xacro(path: Path, mappings: dict[str, str]) -> str:
+def _xacro_urdf(path: Path, mappings: dict[str, str]) -> str:
+    """xacro's output for ``path``, kept on disk while what it was made from is unchanged (:mod:`.cache`)."""
+    from .cache import cached_urdf
+
+    return cached_urdf(path, mappings, package_search_path(), find_package,
+                       lambda inputs: _process_xacro(path, mappings, inputs), code=__file__)
+
+
+def _process_xacro(path: Path, mappings: dict[str, str], inputs=None) -> str:
+    """``xacro.process_file`` with ``$(find)`` ours; ``inputs`` (a :class:`.cache.Inputs`) records the files,
+    environment variables and packages it read."""
     import xml.parsers.expat
 
     import xacro
     import xacro.substitution_args as sa
 
     def resolve(pkg: str) -> str:
-        return str(find_package(pkg))
+        found = str(find_package(pkg))
+        if inputs is not None:
+            inputs.packages[pkg] = found
+        return found
+
+    def env(name: str) -> str:
+        if inputs is not None:
+            inputs.env[name] = os.environ.get(name)
+        return saved_env(name)
+
+    def optenv(name: str, default: str = "") -> str:
+        if inputs is not None:
+            inputs.env[name] = os.environ.get(name)
+        return saved_optenv(name, default)
 
     with _XACRO_LOCK:
         saved = sa._eval_find, sa._eval_dict["find"]
+        saved_env, saved_optenv = sa._eval_env, sa._eval_optenv
         sa._eval_find = sa._eval_dict["find"] = resolve
+        sa._eval_env = sa._eval_dict["env"] = env
+        sa._eval_optenv = sa._eval_dict["optenv"] = optenv
+        xacro.all_includes = []   # the files it opens besides ``path`` (xacro keeps them in a module global)
         try:
             doc = xacro.process_file(str(path), mappings=mappings)
+            for included in xacro.all_includes if inputs is not None else ():
+                inputs.add_file(included)
         except xacro.XacroException as err:
             raise _xacro_error(path, err) from None
         except (xml.parsers.expat.ExpatError, OSError) as err:
@@ -137,6 +166,8 @@ def _process_xacro(path: Path, mappings: dict[str, str]) -> str:
                              hint="an include or a macro calls itself: break the cycle") from None
         finally:
             sa._eval_find, sa._eval_dict["find"] = saved
+            sa._eval_env = sa._eval_dict["env"] = saved_env
+            sa._eval_optenv = sa._eval_dict["optenv"] = saved_optenv
     return doc.toprettyxml(indent="  ")
 
 

@@ -14,6 +14,8 @@ from .session import Session
 
 UPRIGHT_TILT = math.radians(10)   # roll or pitch beyond this: the robot fell over or is stuck on something
 STOPPED_SPEED = 0.02              # m/s: slower than this through the last second counts as stopped
+STILL_SPEED = 0.001               # m/s and rad/s: a holding robot slower than this, turning slower than this,
+STILL_DRIFT = 0.001               # m: and within this of where it came to rest is still (see stop_at_wall)
 SCAN_RECORD_RATE = 5.0            # Hz: at most this many scans a simulated second recorded for a replay
 
 
@@ -127,8 +129,20 @@ class StopAtWallResult:
         return {**self.__dict__, "ok": self.ok}
 
 
-def stop_at_wall(session: Session, law: stoplaw.StopLaw | None = None, duration: float = 15.0, rate: float = 5.0,
-                 half_angle: float = math.radians(stoplaw.FRONT_ANGLE), band: float = 0.02,
+@dataclass(frozen=True)
+class Ending:
+    """When a :func:`stop_at_wall` run ends: after ``seconds``, or sooner once the law has held, with the robot
+    still (slower than :data:`STILL_SPEED`, within :data:`STILL_DRIFT` of where it came to rest), for ``still``
+    seconds (None: never sooner). In a world where nothing else moves, the rest of the run would only let it
+    creep (a resting robot's wheels slip by a few tenths of a millimetre a second), far less than any
+    tolerance."""
+
+    seconds: float
+    still: float | None = None
+
+
+def stop_at_wall(session: Session, law: stoplaw.StopLaw | None = None, duration: float | Ending = 15.0,
+                 rate: float = 5.0, half_angle: float = math.radians(stoplaw.FRONT_ANGLE), band: float = 0.02,
                  tolerance: float = 0.05, record_scans: bool = False) -> StopAtWallResult:
     """Drive toward whatever is ahead and stop ``law.target`` m from it, exactly as the generated
     ``stop_at_wall.py`` node does: ``law`` (:class:`worldgen.core.stoplaw.StopLaw`, its parameters; a fresh copy
@@ -142,7 +156,8 @@ def stop_at_wall(session: Session, law: stoplaw.StopLaw | None = None, duration:
     The series has one sample per control step and one for the state at the end: ``t`` (s from the start),
     ``measured`` and ``true`` front distances, ``v_cmd``, ``v``, and the base frame's world ``x``, ``y``, ``yaw``.
     ``record_scans`` adds ``scan``: the scan the controller saw, as :func:`~worldgen.sim.lidar.scan_row`, at
-    most :data:`SCAN_RECORD_RATE` a second (None at the samples between) and always at the end."""
+    most :data:`SCAN_RECORD_RATE` a second (None at the samples between) and always at the end. ``duration``
+    (s) may be an :class:`Ending`, which may end the run sooner."""
     if session.lidar is None:
         session.scan()   # raises the "no LiDAR" error
     period = 1.0 / rate
@@ -155,7 +170,9 @@ def stop_at_wall(session: Session, law: stoplaw.StopLaw | None = None, duration:
         series["scan"] = []
     law = replace(law or stoplaw.StopLaw(), holding=False, integral=0.0, last_error=None)
     stop_time = None
-    for step in range(max(1, round(duration / period))):
+    ending = duration if isinstance(duration, Ending) else Ending(duration)
+    still = _Stillness(ending.still)
+    for step in range(max(1, round(ending.seconds / period))):
         scan = session.scan()
         measured = front_distance(scan, half_angle)
         true = front_distance(scan, half_angle, true=True)
@@ -171,6 +188,8 @@ def stop_at_wall(session: Session, law: stoplaw.StopLaw | None = None, duration:
             series[key].append(value)
         if every:
             series["scan"].append(scan_row(scan) if step % every == 0 else None)
+        if still.long_enough(law.holding, odom):
+            break
         session.cmd_vel(v_cmd, 0.0)
         session.run(period)
     scan = session.scan()   # the state at the end; the last command still holds
@@ -195,6 +214,26 @@ def stop_at_wall(session: Session, law: stoplaw.StopLaw | None = None, duration:
         stopped=law.holding and all(abs(v) < STOPPED_SPEED for v in last_second),
         within_tolerance=final is not None and abs(final - target) <= tolerance, tolerance=tolerance,
         contacts=session.touches.to_list(), series=series, start_t=start_t)
+
+
+class _Stillness:
+    """Whether a holding robot has been still for ``seconds`` (None: never asked to end early)."""
+
+    def __init__(self, seconds: float | None):
+        self.seconds, self.since, self.at = seconds, None, None
+
+    def long_enough(self, holding: bool, odom) -> bool:
+        if self.seconds is None:
+            return False
+        still = holding and abs(odom.v) < STILL_SPEED and abs(odom.omega) < STILL_SPEED
+        if still and self.at is not None and math.hypot(odom.x - self.at[0], odom.y - self.at[1]) > STILL_DRIFT:
+            still = False
+        if not still:
+            self.since, self.at = None, None
+            return False
+        if self.since is None:
+            self.since, self.at = odom.t, (odom.x, odom.y)
+        return odom.t - self.since >= self.seconds - 1e-9
 
 
 def _scan_every(rate: float) -> int:

@@ -33,6 +33,16 @@ DEFAULT_TIME_STEP = 1.0 / 240   # s; a whole number of steps per 30 Hz drive upd
 DEFAULT_SOLVER_ITERATIONS = 10
 
 
+_SPARE: list[int] = []   # a client connected ahead of time (warm), taken by the next session
+
+
+def warm() -> None:
+    """Connect a pybullet client ahead of time (a third of a session's start): a fork server calls this once,
+    and the first session of each fork takes its own copy of it (a fork copies the process's memory)."""
+    if not _SPARE:
+        _SPARE.append(pb.connect(pb.DIRECT))
+
+
 class Session:
     """Robots in one scene. ``spawn`` is (x, y) or (x, y, yaw) of the first robot's base frame, on the ground;
     :meth:`add_robot` adds more. ``seed`` seeds the LiDAR's noise (None: no noise, the exact ranges quantised);
@@ -50,7 +60,7 @@ class Session:
         self.rng = np.random.default_rng(seed) if seed is not None else None
         self._steps = 0
         self.robots: list[Robot] = []
-        self.client = pb.connect(pb.DIRECT)
+        self.client = _SPARE.pop() if _SPARE else pb.connect(pb.DIRECT)
         try:
             pb.setGravity(0, 0, GRAVITY, physicsClientId=self.client)
             pb.setPhysicsEngineParameter(fixedTimeStep=self.time_step, numSolverIterations=self.solver_iterations,

@@ -1,0 +1,124 @@
+"""Speed of ``worldgen validate`` against the floor, measured in the same run (issue 26).
+
+The floor is a Python start that imports what validate cannot do without: ``python -c 'import pybullet, numpy,
+lxml.etree'``. Each round runs the floor, ``validate`` of the class room (the corpus's enclosed room with its
+launch file, as README and bench_validate.py use) and the same with ``--skip-sim``, in an order that rotates from
+round to round, so that a busy machine slows all three alike. Printed: the medians of wall time and of CPU time
+(user + system of the process and its children, which other programs on the machine do not inflate), each as a
+multiple of the floor's; the simulation's share (validate − ``--skip-sim``); and, in this process, the simulated
+job's own phases (robot load, settle, scan, spin, stop-at-wall) on the same scene.
+
+    .venv/bin/python benchmarks/bench_speed.py [--rounds N]
+
+Target: validate of the class room at most 3 times the floor.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import resource
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parent.parent
+CORPUS = REPO.parent / "shared" / "corpus"
+CLASS = "Intro-Robotics-UChicago-Spring-2022__warmup_project__"
+CLASS_ROOM = CORPUS / "worlds" / f"{CLASS}worlds_turtlebot3_in_enclosed_room.world"
+CLASS_LAUNCH = CORPUS / "launch" / f"{CLASS}launch_turtlebot3_in_room.launch"
+FLOOR = [sys.executable, "-c", "import pybullet, numpy, lxml.etree"]
+TARGET = 3.0
+
+
+def timed(cmd: list[str], env: dict) -> tuple[float, float]:
+    """Wall and CPU seconds (user + system, the process and all it waited for) of one run of ``cmd``."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    t0 = time.perf_counter()
+    proc = subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, env=env)
+    wall = time.perf_counter() - t0
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    if proc.returncode not in (0, 1):
+        raise SystemExit(f"{' '.join(cmd)} failed ({proc.returncode}): {proc.stderr.decode()[-2000:]}")
+    return wall, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+
+
+def class_args(tmp: Path) -> tuple[list[str], str]:
+    if CLASS_ROOM.is_file():
+        return [str(CLASS_ROOM), "--launch", str(CLASS_LAUNCH)], "the class room (corpus, its launch file's spawn)"
+    sys.path.insert(0, str(REPO / "benchmarks"))
+    from bench_validate import room_world
+
+    (tmp / "room.world").write_text(room_world(5.0, False, False))
+    return [str(tmp / "room.world"), "--spawn", "0,0"], "a 5 m room (written here: no corpus)"
+
+
+def measure(commands: dict[str, list[str]], rounds: int, env: dict) -> dict[str, list[tuple[float, float]]]:
+    names = list(commands)
+    for name in names:   # warm the file cache and any cache worldgen keeps
+        timed(commands[name], env)
+    samples: dict[str, list[tuple[float, float]]] = {name: [] for name in names}
+    for i in range(rounds):
+        order = names[i % len(names):] + names[:i % len(names)]
+        for name in order:
+            samples[name].append(timed(commands[name], env))
+    return samples
+
+
+def phases(args: list[str]) -> None:
+    """The simulated job's phases on the class room's scene, in this process (pybullet imported already)."""
+    sys.path.insert(0, str(REPO))
+    from worldgen.check.sim_job import sim_numbers
+    from worldgen.check.validate import Options, plan
+    from worldgen.robots import robot_urdf
+    from worldgen.sdf.reader import read_world
+
+    [job] = plan([args[0]], Options(launch=Path(args[2]) if len(args) > 2 and args[1] == "--launch" else None,
+                                    spawn=(0.0, 0.0, 0.0) if "--spawn" in args else None))
+    scene = read_world(job.world)
+    urdf = robot_urdf(job.robot)
+    sim_numbers(scene, job.robot, job.spawn, urdf=urdf)   # warm
+    walls = []
+    for _ in range(3):
+        numbers = sim_numbers(scene, job.robot, job.spawn, urdf=urdf)
+        walls.append(numbers.wall_seconds)
+    stop = numbers.stop
+    print(f"  simulated job in-process: median {statistics.median(walls) * 1000:.0f} ms for "
+          f"{numbers.sim_seconds:.1f} simulated s (stop-at-wall {stop.time:.1f} s of them)" if stop else
+          f"  simulated job in-process: median {statistics.median(walls) * 1000:.0f} ms")
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--rounds", type=int, default=11)
+    opts = parser.parse_args()
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in (str(REPO), os.environ.get("PYTHONPATH")) if p))
+    with tempfile.TemporaryDirectory() as tmp:
+        # as installed (pip compiles a wheel's modules): bytecode kept, in a folder of this run's own, even
+        # where PYTHONDONTWRITEBYTECODE is set; the first round of each command writes it
+        env.pop("PYTHONDONTWRITEBYTECODE", None)
+        env["PYTHONPYCACHEPREFIX"] = str(Path(tmp) / "pycache")
+        args, label = class_args(Path(tmp))
+        validate = [sys.executable, "-m", "worldgen", "validate", *args, "--format", "json"]
+        commands = {"floor": FLOOR, "validate": validate, "validate --skip-sim": validate + ["--skip-sim"]}
+        samples = measure(commands, opts.rounds, env)
+    wall = {n: statistics.median(s[0] for s in v) for n, v in samples.items()}
+    cpu = {n: statistics.median(s[1] for s in v) for n, v in samples.items()}
+    print(f"validate of {label}; medians of {opts.rounds} interleaved rounds on {os.cpu_count()} cores")
+    print(f"  {'':22s} {'wall':>8s} {'× floor':>8s} {'cpu':>8s} {'× floor':>8s}")
+    for name in commands:
+        print(f"  {name:22s} {wall[name]:7.3f}s {wall[name] / wall['floor']:7.2f}x "
+              f"{cpu[name]:7.3f}s {cpu[name] / cpu['floor']:7.2f}x")
+    share = wall["validate"] - wall["validate --skip-sim"]
+    print(f"  the simulation's share (validate − --skip-sim): {share:.3f} s wall, "
+          f"{cpu['validate'] - cpu['validate --skip-sim']:.3f} s cpu")
+    ratio = wall["validate"] / wall["floor"]
+    print(f"  validate / floor = {ratio:.2f}x wall (target ≤ {TARGET:g}x): {'met' if ratio <= TARGET else 'NOT met'}")
+    phases(args)
+
+
+if __name__ == "__main__":
+    main()
