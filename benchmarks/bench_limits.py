@@ -242,6 +242,84 @@ def _dangling_output(tmp: Path) -> List[str]:
     return ["build", str(_write(tmp, "spec.yaml", SMALL_ROOM)), "-o", str(tmp)]
 
 
+# Issue 25's campaign: every command answers within 10 s and 500 MB, or refuses in one line.
+BOUNDED = (10.0, 500.0)
+
+
+def _soup_obj(tmp: Path, count: int) -> Path:
+    """An OBJ triangle soup of ``count`` triangles over 3·count/8 shared vertices (short lines, as the campaign's
+    4 MB file), beside a closed room."""
+    rng = random.Random(count)
+    vertices = max(3, 3 * count // 8)
+    with open(tmp / "soup.obj", "w") as out:
+        out.writelines(f"v {rng.uniform(2, 6):.3f} {rng.uniform(-2, 2):.3f} {rng.uniform(0, 1):.3f}\n"
+                       for _ in range(vertices))
+        out.writelines(f"f {rng.randrange(vertices) + 1} {rng.randrange(vertices) + 1} {rng.randrange(vertices) + 1}\n"
+                       for _ in range(count))
+    path = tmp / "soup_obj.world"
+    path.write_text(world(room_walls(1.5) + "<model name='soup'><static>1</static><link name='l'><collision "
+                          "name='c'><geometry><mesh><uri>soup.obj</uri></mesh></geometry></collision><visual "
+                          "name='v'><geometry><mesh><uri>soup.obj</uri></mesh></geometry></visual></link></model>\n"))
+    return path
+
+
+def _far_pose(tmp: Path) -> Path:
+    (tmp / "tri.obj").write_text("v 0 0 0\nv 1 0 0\nv 0 1 1\nf 1 2 3\n")
+    return _write(tmp, "far.world", world(room_walls(1.5) + "<model name='far'><static>1</static><pose>1e308 0 0 0 0 "
+                                          "0</pose><link name='l'><collision name='c'><geometry><mesh><uri>tri.obj"
+                                          "</uri></mesh></geometry></collision></link></model>\n"))
+
+
+def _fine_grid(tmp: Path) -> Path:
+    """A 17.5 KB spec: a 140 × 120 grid of 1 cm cells, a tenth of them walls (seeded), the robot in the middle."""
+    rng = random.Random(1)
+    rows = ["".join("#" if r in (0, 119) or c in (0, 139) or rng.random() < 0.1 else "." for c in range(140))
+            for r in range(120)]
+    rows[60] = rows[60][:70] + "R" + rows[60][71:]
+    return _write(tmp, "fine.yaml", "name: fine\ngrid:\n  cell: 0.01\n  rows: |\n"
+                  + "".join(f"    {r}\n" for r in rows))
+
+
+def _random_grid(tmp: Path, side: int) -> Path:
+    rng = random.Random(side)
+    return _write(tmp, "random.txt", "\n".join("".join("#" if rng.random() < 0.5 else "." for _ in range(side))
+                                                for _ in range(side)) + "\n")
+
+
+def _plain_big_yaml(tmp: Path) -> Path:
+    """1.1 MB of plain YAML (no alias): a line of 140 000 points."""
+    points = ", ".join(f"[{i % 9}, {i % 7}]" for i in range(140_000))
+    return _write(tmp, "big.yaml", "name: big\nrooms:\n  - name: room\n    rect: {center: [0, 0], size: [5, 5]}\n"
+                  f"lines:\n  - name: t\n    points: [{points}]\n")
+
+
+def _link_to_root(tmp: Path) -> List[str]:
+    """A class folder where one submission holds a link to / (the walk once took 46 s over 1 873 files)."""
+    sub = tmp / "submissions" / "ana" / "lab"
+    sub.mkdir(parents=True)
+    (sub / "package.xml").write_text("<package format='2'><name>lab</name><version>0.0.1</version><description>d"
+                                     "</description><maintainer email='a@b.c'>a</maintainer><license>BSD</license>"
+                                     "</package>\n")
+    os.symlink("/", tmp / "submissions" / "ana" / "root")
+    return _validate(tmp / "submissions")
+
+
+CAMPAIGN = [
+    Case("mesh-soup-obj-250k", lambda t: ["validate", str(_soup_obj(t, 250_000))], BOUNDED, (0, 1)),
+    Case("mesh-soup-obj-250k-view", lambda t: ["view", str(_soup_obj(t, 250_000)), "-o", str(t / "s.html")],
+         BOUNDED, (0,)),
+    Case("mesh-soup-obj-250k-preview", lambda t: ["preview", str(_soup_obj(t, 250_000)), "-o", str(t / "s.png")],
+         BOUNDED, (0,)),
+    Case("mesh-soup-obj-2M", lambda t: ["validate", str(_soup_obj(t, 2_000_000))], BOUNDED, (0, 1)),
+    Case("far-pose-1e308", lambda t: ["validate", str(_far_pose(t))], BOUNDED, (0, 1)),
+    Case("far-pose-1e308-preview", lambda t: ["preview", str(_far_pose(t)), "-o", str(t / "f.png")], BOUNDED, (0,)),
+    Case("grid-cell-1cm", lambda t: ["validate", str(_fine_grid(t))], BOUNDED, (0, 1)),
+    Case("grid-random-200", lambda t: _validate(_random_grid(t, 200)), BOUNDED, (0, 1)),
+    Case("yaml-plain-1.1MB", lambda t: ["build", str(_plain_big_yaml(t)), "-o", str(t / "o")], BOUNDED, (2,)),
+    Case("folder-link-to-root", _link_to_root, BOUNDED, (0, 1)),
+]
+
+
 CASES = [
     Case("mesh-obj-latin1", _latin1_obj, REFUSAL, (0, 1)),
     Case("mesh-unreadable", _unreadable_mesh, REFUSAL, (0, 1)),
@@ -280,7 +358,7 @@ CASES = [
          REFUSAL, (2,)),
     Case("yaml-deep-40000", _deep, REFUSAL, (2,)),
     Case("yaml-dev-zero", _spec_dev_zero, REFUSAL, (2,)),
-]
+] + CAMPAIGN
 
 
 RUNNER = """
