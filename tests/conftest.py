@@ -78,11 +78,15 @@ ROS_TESTS = {
     "test_ros2_packages.py": ("test_colcon_builds_the_workspace",),                      # colcon
     "test_scaffold.py": ("test_same_meaning_as_catkin_create_pkg", "test_metapackage"),  # catkin_create_pkg
 }
-ROS_FIXTURES = ("tag", "rclpy_python")   # bridgetools' tag: a run's processes, with a real master; a peer's rclpy
+ROS_FIXTURES = ("tag", "ros2_tag", "rclpy_python")   # a run's processes with a real master; a peer's rclpy
 BROWSER_FIXTURES = ("chromium",)
 # Pure tests of a second or more (see the module docstring), by module.
 SLOW_TESTS = {
+    "test_absurd_coordinates.py": ("test_a_shape_beyond_reach_is_a_finding_not_a_crash",),
     "test_bad_input.py": ("test_build_exits_2_and_writes_nothing", "test_message_names_file_line_and_fix"),
+    "test_bounded_meshes.py": ("test_a_mesh_over_the_budget_is_skipped_before_it_is_parsed",
+                               "test_a_soup_within_the_budget_gets_a_verdict",
+                               "test_a_world_past_its_triangle_budget_skips_the_meshes_past_it"),
     "test_drive.py": ("test_drive_bad_input_exits_2", "test_drive_from_a_spec",
                       "test_drive_reports_a_collision_with_exit_1", "test_drive_spin",
                       "test_drive_stop_at_wall_with_plot_and_csv", "test_run_isolated_reports_crashes_and_timeouts"),
@@ -121,11 +125,13 @@ SLOW_TESTS = {
                          "test_the_line_track_template_validates_and_its_tape_changes_no_other_check",
                          "test_the_preview_draws_the_tape_in_its_colour"),
     "test_occupancy.py": ("test_example_validates",),
+    "test_output_suffixes.py": ("test_the_right_suffix_writes_what_it_says",),
     "test_preview.py": ("test_grid_posts_are_drawn_as_walls", "test_lidar_rays_end_on_the_walls",
                         "test_preview_command_writes_the_png", "test_preview_spawn_and_robot_options",
                         "test_spec_picture_marks_doors_windows_obstacles_and_spawn"),
     "test_reader.py": ("test_a_400_room_building_reads",),
     "test_readme.py": ("test_the_first_command_installs_and_checks_on_a_pep668_system",),
+    "test_robot_cache.py": ("test_a_kept_description_is_the_processed_one_and_the_next_process_skips_xacro",),
     "test_ros2_msgs.py": ("test_bytes_equal_rosbags_and_read_back_equal",
                           "test_nothing_outside_ros2_imports_cyclonedds_at_import_time",
                           "test_random_samples_equal_rosbags", "test_stamps_floor_and_order"),
@@ -141,11 +147,17 @@ SLOW_TESTS = {
     "test_runtime.py": ("test_doctor_json_and_exit_codes", "test_doctor_prints_the_table_and_one_apt_line",
                         "test_every_debian_name_in_the_table_exists",
                         "test_pictures_draw_quietly_beside_debians_matplotlib"),
+    "test_runtime_ros2.py": ("test_doctor_and_run_name_ros2_packages_and_start_nothing",),
     "test_safe_writes.py": ("test_build_model_dir_force_killed", "test_build_package_killed",
                             "test_course_force_killed", "test_scaffold_force_killed",
                             "test_two_builds_without_force_one_wins", "test_two_scaffolds_without_force_one_wins"),
     "test_sdfcheck.py": ("test_every_version_passes_libsdformat", "test_examples_build_into_valid_worlds",
                          "test_stand_ins_for_gazebo_stock_models"),
+    "test_self_check.py": ("test_everything_worldgen_writes_validates_without_a_word",
+                           "test_worldgen_specs_and_worlds_pass_the_simulator_too"),
+    "test_sim_forks.py": ("test_a_crash_in_the_forked_simulation_is_a_finding",
+                          "test_a_crash_or_a_hang_ends_its_run_alone_and_nothing_is_left",
+                          "test_an_early_run_that_read_another_world_is_simulated_again_on_the_checked_scene"),
     "test_validate.py": ("test_class_room_with_the_course_launch_file",
                          "test_exit_code_2_for_bad_input_with_one_line", "test_json_shape",
                          "test_libsdformat_checks_included_models_from_the_model_path",
@@ -154,8 +166,10 @@ SLOW_TESTS = {
                          "test_progress_in_a_log_is_one_line_per_file_on_stderr",
                          "test_results_keep_input_order_with_two_workers",
                          "test_stop_at_wall_turns_to_face_the_nearest_wall"),
-    "test_validate_corpus.py": ("test_corpus_file_outcome", "test_empty_world_in_the_simulator",
+    "test_validate_corpus.py": ("test_corpus_details_at_origin", "test_corpus_file_outcome",
+                                "test_empty_world_in_the_simulator",
                                 "test_every_corpus_file_has_a_stated_expectation",
+                                "test_robotis_jazzy_worlds_name_their_fuel_includes_without_fetching",
                                 "test_robotis_worlds_pass_with_their_launch_spawn",
                                 "test_without_a_spawn_the_moved_class_room_is_checked_from_its_middle"),
     "test_view.py": ("test_a_run_is_thinned_to_what_the_eye_needs", "test_drive_html_replays_the_stop",
