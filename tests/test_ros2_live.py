@@ -196,12 +196,12 @@ def test_the_waffle_pi_camera_reaches_an_rclpy_node(stack, frame, rclpy_python, 
     is dropped is benchmarks/bench_ros2.py's to show, on a quiet machine)."""
     out = tmp_path / "camera.json"
     worldgen([str(ROOM), str(NODES / "camera_count.py"), f"_out:={out}", "--robot", "waffle_pi", "--ros", stack,
-              "--duration", "3", "--rate", "1"], rclpy_python, tag)
+              "--duration", "2", "--rate", "0.5"], rclpy_python, tag)   # half pace: a loaded machine keeps up
     seen = json.loads(out.read_text())
     assert seen["first"] == {"width": 640, "height": 480, "encoding": "rgb8", "frame": frame, "bytes": 921600}
     assert seen["info"] > 0 and seen["k"][0] == pytest.approx(530.47, abs=0.01)
     stamps = sorted(set(seen["stamps"]))
-    assert len(stamps) >= 10
+    assert len(stamps) >= 5
     assert all(abs(t * 30 - round(t * 30)) < 1e-3 for t in stamps)
 
 
