@@ -21,7 +21,6 @@ says which. Findings about a world built from a spec name the spec's rooms and w
 from __future__ import annotations
 
 import tempfile
-from concurrent.futures import ThreadPoolExecutor, as_completed
 from dataclasses import dataclass, field
 from dataclasses import replace as dc_replace
 from pathlib import Path
@@ -510,6 +509,8 @@ def run_jobs(planned: Sequence[Job], options: Options, workers: int = 1,
             if progress:
                 progress(job, done)
         return results
+    from concurrent.futures import ThreadPoolExecutor, as_completed   # (and logging: only with workers)
+
     with ThreadPoolExecutor(max_workers=workers) as pool:
         futures = {pool.submit(run_job, job, options): job for job in planned}
         if progress:

@@ -50,15 +50,16 @@ def validate(paths, robot, spawn, launch_file, model_paths, fmt, junit, jobs, li
     A missing path is a failed result of its own. Progress goes to stderr (a bar on a terminal, a line per
     file otherwise). Exit status: 0 every check passed (warnings allowed), 1 a check failed, 2 bad input.
     """
-    from contextlib import nullcontext
-
+    args = (paths, robot, spawn, launch_file, model_paths, fmt, junit, jobs, lidar_no_hit, shard, skip_sim, sdformat,
+            html)
+    if skip_sim:
+        return _validate(*args)
     from ..sim.forkserver import forking
 
     # first, while this process runs no thread and has imported little: the simulations' fork server, which
     # imports pybullet and the simulator while this process reads the inputs
-    with nullcontext() if skip_sim else forking(SIM_MODULES):
-        _validate(paths, robot, spawn, launch_file, model_paths, fmt, junit, jobs, lidar_no_hit, shard, skip_sim,
-                  sdformat, html)
+    with forking(SIM_MODULES):
+        _validate(*args)
 
 
 # what the simulations use, imported once in the server: the job, the reader (a small world's job reads it
