@@ -243,7 +243,7 @@ def test_namespaced_robots_from_a_launch_py(rclpy_python, tmp_path, tag):
         "                                 launch_arguments={'world': world}.items()),\n" + spawns + "    ])\n")
     code, doc = run_json([str(launch), str(NODES / "timer_stopper.py"), "__ns:=/tb3_1", "_use_sim_time:=true",
                           "_stamped:=false", "--robot-ns", "tb3_1", "--ros", "humble", "--task", "stop-at-wall",
-                          "--rate", "max"], rclpy_python, tag)
+                          "--rate", "4", "--duration", "15"], rclpy_python, tag)   # a timer node: paced
     assert code == 0, doc["findings"]
     robots = doc["metrics"]["robots"]
     assert robots["/tb3_1"]["path_length_m"] > 1.5 and robots["/tb3_0"]["path_length_m"] < 0.05
