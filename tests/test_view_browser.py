@@ -231,3 +231,108 @@ def test_a_run_that_never_moved_shows_the_robot_at_its_spawn(chromium, tmp_path)
         assert (at["x"], at["y"], at["yaw"]) == pytest.approx((-1.0, 0.0, 0.0))
         probe.page.click("#btn-play")
         assert probe.console_errors == [] and probe.left_file == []
+
+
+# ------------------------------------------------------------------------------ what the campaign found (issue 25)
+PATH = (0x1F, 0x77, 0xB4)   # the replay's path (templates/view/page.js)
+
+
+def _lap_of_the_track() -> dict:
+    """One lap of examples/line_track.yaml's tape from the robot's spawn at 0.15 m/s, odometry at 30 Hz."""
+    import yaml
+
+    tape = yaml.safe_load((EXAMPLES / "line_track.yaml").read_text(encoding="utf-8"))["lines"][0]["points"]
+    points = [(0.0, -0.85), *map(tuple, tape), (0.0, -0.85)]
+    odom, t = [], 0.0
+    for (x0, y0), (x1, y1) in zip(points, points[1:]):
+        steps = max(1, round(math.hypot(x1 - x0, y1 - y0) / 0.15 * 30))
+        yaw = math.atan2(y1 - y0, x1 - x0)
+        for k in range(steps):
+            f = k / steps
+            odom.append([t, x0 + f * (x1 - x0), y0 + f * (y1 - y0), yaw, 0.15, 0.0, 0.15, 0.0])
+            t += 1 / 30
+    return {"odom": odom, "scans": [], "contacts": []}
+
+
+def _shares_round(mask) -> list:
+    """The shares of ``mask``'s pixels left, right, above and below their centroid."""
+    rows, cols = np.nonzero(mask)
+    return [float(np.mean(cols < cols.mean())), float(np.mean(cols > cols.mean())),
+            float(np.mean(rows < rows.mean())), float(np.mean(rows > rows.mean()))]
+
+
+@pytest.mark.parametrize("viewport", [(1000, 800), (1400, 900)])
+def test_a_line_track_replay_opens_with_the_robot_and_its_path_in_sight(chromium, tmp_path, viewport):
+    """The line track's walls are taller than the robot is far from them: from the default side the near wall hid
+    the robot and the tape (no red pixel at all); the page picks a side and a height from which they are seen."""
+    from worldgen.check.report import Result
+    from worldgen.check.sources import load_scene
+    from worldgen.view.grades import run_page
+
+    spec = EXAMPLES / "line_track.yaml"
+    scene, _ = load_scene(spec, "spec")
+    world = types.SimpleNamespace(path=spec, scene=scene, spawn=(0.0, -0.85, 0.0), robot="waffle_pi")
+    page_file = tmp_path / "line.html"
+    page_file.write_bytes(run_page(Result(path="subs/ada", checks=["node", "line-follow"]), world,
+                                   _lap_of_the_track()))
+    with open_page(chromium, page_file, viewport=viewport) as probe:
+        wait_ready(probe.page)
+        assert not probe.page.evaluate("window.worldgen.frame().top")   # the first frame: the 3D view
+        pixels = canvas_pixels(probe.page)
+        ring = colour_mask(pixels, ROBOT, tolerance=24)
+        path = colour_mask(pixels, PATH, tolerance=30)
+        print(f"\n{viewport}: {ring.sum()} robot pixels, {path.sum()} path pixels")
+        assert ring.sum() > 100 and min(_shares_round(ring)) > 0.2   # the ring, all round
+        assert path.sum() > 100 and min(_shares_round(path)) > 0.2    # the lap, all round
+        assert probe.console_errors == [] and probe.left_file == []
+
+
+def _policy(page_bytes: bytes) -> str:
+    from lxml import html as lxml_html
+
+    return lxml_html.fromstring(page_bytes).xpath("//meta[@http-equiv='Content-Security-Policy']/@content")[0]
+
+
+def test_a_report_folder_shares_one_three_js_and_its_pages_open_offline(chromium, tmp_path):
+    """A folder report writes three.js once, beside its pages, and each page loads it from there (opened from
+    file://, every request off the disk refused); a page taken out of its folder says why it cannot start; a single
+    page (view -o, run --html FILE) still holds its own copy."""
+    from worldgen.check.report import Result
+    from worldgen.check.sources import load_scene
+    from worldgen.view.grades import BACK, LIBRARY, PAGES, run_page, validate_page, write_report
+    from worldgen.view.page import world_page
+
+    spec = EXAMPLES / "enclosed_room.yaml"
+    scene, _ = load_scene(spec, "spec")
+    world = types.SimpleNamespace(path=spec, scene=scene, spawn=(-1.0, 0.0, 0.0), robot="burger")
+    trace = _trace()
+    results = [Result(path=str(EXAMPLES / "two_rooms.yaml"), robot="waffle"), Result(path=str(spec)),
+               Result(path="subs/ada", checks=["node", "stop-at-wall"])]
+    report = write_report(tmp_path / "report", results, lambda r: (
+        run_page(r, world, trace, back=BACK) if r.path == "subs/ada" else validate_page(r)), "a class")
+    pages = sorted((report / PAGES).glob("*.html"))
+    shared = report / PAGES / LIBRARY
+    assert len(pages) == 3 and sorted(p.name for p in (report / PAGES).iterdir() if p.suffix != ".html") == [LIBRARY]
+    assert shared.stat().st_size > 800_000 and max(p.stat().st_size for p in pages) < 200_000
+    for page in pages:
+        text = page.read_bytes()
+        assert b'<script src="three.js"></script>' in text and b'id="lib-three"' not in text
+        sources = _policy(text).split("script-src ", 1)[1].split(";")[0].split()
+        assert len(sources) == 3 and sources[0].startswith("'sha256-") and sources[1:] == ["'self'", "blob:"]
+    world_file = next(p for p in pages if "two_rooms" in p.name)
+    with open_page(chromium, world_file, viewport=(1100, 800)) as probe:
+        wait_ready(probe.page)
+        pixels, frame = top_view(probe.page)
+        _assert_walls_match(pixels, frame, _preview_walls(EXAMPLES / "two_rooms.yaml"))
+        assert probe.console_errors == [] and probe.left_file == []
+    with open_page(chromium, next(p for p in pages if "ada" in p.name)) as probe:
+        wait_ready(probe.page)
+        assert probe.page.evaluate("window.worldgen.robot()")["x"] == pytest.approx(-1.0, abs=1e-6)
+        assert probe.console_errors == [] and probe.left_file == []
+    alone = tmp_path / "alone.html"   # a page mailed without its folder
+    alone.write_bytes(world_file.read_bytes())
+    with open_page(chromium, alone) as probe:
+        probe.page.wait_for_function("document.getElementById('status').textContent.includes('could not start')")
+        assert "keep this page in its folder" in probe.page.inner_text("#status") and probe.left_file == []
+    for single in (world_page(EXAMPLES / "two_rooms.yaml"), run_page(results[2], world, trace)):
+        assert b'id="lib-three"' in single and b"<script src=" not in single and "'self'" not in _policy(single)

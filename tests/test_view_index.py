@@ -299,7 +299,8 @@ def test_what_students_control_stays_text():
     assert doc.findtext(".//title") == "<title> & \"co\"" and doc.findtext(".//h1") == "<title> & \"co\""
     tr = doc.xpath("//tr[@data-name]")[0]
     assert tr.get("data-name") == HOSTILE
-    assert tr.find("td/a").text == HOSTILE
+    assert tr.find("td/a").text_content() == HOSTILE
+    assert {e.tag for e in tr.find("td/a").iter()} == {"a", "wbr"}   # places to wrap the name, nothing else
     assert "wall <img src=x onerror=alert(2)> & </script>" in doc.text_content()
     assert "\"quote\" 'it' &amp;" in doc.text_content() and "<b>here</b>" in doc.text_content()
     assert "<i>bot&amp;.urdf" in doc.text_content()
@@ -404,3 +405,84 @@ def test_in_a_browser_headers_sort_numerically_and_the_switches_filter(chromium,
         page.locator("tr[data-name='subs/alice'] a").click()
         page.wait_for_url("**/alice/index.html")
         assert page.title() == "alice"
+
+
+# --------------------------------------------------------------------------------- what the campaign found
+# A first-time user's report (issue 25): the index was wider than a 1000 px window, wrapped names mid-word, showed
+# "-0.00 m" and gave the count twice.
+
+def line_runs() -> list[Result]:
+    """A line-follow class (the task with the most columns: 15) under names as students give them."""
+    names = ["alice_anderson", "bob_brown_lab_a_stop_at_wall", "carol", "d", "evelyn_montgomery-smith_2024",
+             "Frederick.Williamson", "grace-hopper-the-second"]
+    return [Result(path=f"submissions/{name}", spawn=(0.0, -0.85, 0.0), robot="waffle_pi",
+                   checks=["node", "line-follow"],
+                   findings=[Finding("line-follow", "error", "left the line for 4.2 s at "
+                                     "/home/student/catkin_ws/src/line_follower_package/scripts/follow.py:42")]
+                   if i % 2 else [],
+                   metrics=run_metrics(1.2, 7.5 + i, share_on_line=0.93, laps=1.2, covered=1.0,
+                                       worst_distance_m=0.12))
+            for i, name in enumerate(names)]
+
+
+def test_no_number_reads_minus_zero():
+    stopped = ran("subs/alice", 0.4999, 1.8)            # stop error −0.0001 m
+    stopped.metrics["min_clearance_m"] = -0.0001        # a measure rounding to zero from below
+    stopped.spawn = (-0.0001, 0.0, -0.0)
+    texts = {m["label"]: m["text"] for m in index_rows([stopped, validated("w.world")])[0]["metrics"]}
+    assert texts["stop error"] == "0.00 m" and texts["min clearance"] == "0.00 m"
+    validate_row = index_rows([Result(path="w.world", spawn=(-0.0001, 1.0, -0.0), robot="burger")])[0]
+    assert validate_row["metrics"][0]["text"] == "(0, 1, 0)"
+    shown = [td.text_content() for td in parse(index_page(index_rows([stopped]), "t")).xpath("//tr[@data-name]/td")]
+    assert "0.00 m" in shown and not [text for text in shown if text.startswith("-0")]
+
+
+def test_the_report_gives_the_count_once(tmp_path):
+    from worldgen.view.grades import write_report
+
+    write_report(tmp_path / "report", class_runs(), lambda result: None, "worldgen run subs")
+    doc = parse((tmp_path / "report" / "index.html").read_bytes())
+    above = "".join(e.text_content() for e in doc.body if e.tag not in ("table", "script"))
+    assert len(re.findall(r"\bpass\b", above)) == 1, above
+    assert doc.get_element_by_id("summary").text_content() == "5 submissions: 1 pass, 0 warn, 4 fail"
+
+
+# JavaScript: each word (letters and digits) of a name cell whose characters are not all on one line
+SPLIT_WORDS = """() => {
+  const split = [];
+  for (const cell of document.querySelectorAll('td.name')) {
+    const walker = document.createTreeWalker(cell, NodeFilter.SHOW_TEXT);
+    for (let node = walker.nextNode(); node; node = walker.nextNode()) {
+      for (const word of node.data.matchAll(/[A-Za-z0-9]+/g)) {
+        const range = document.createRange();
+        range.setStart(node, word.index);
+        range.setEnd(node, word.index + word[0].length);
+        const tops = new Set(Array.from(range.getClientRects()).map(r => Math.round(r.top)));
+        if (tops.size > 1) split.push(word[0]);
+      }
+    }
+  }
+  return split;
+}"""
+
+
+@pytest.mark.parametrize("kind", ["line-follow", "validate"])
+def test_in_a_browser_a_class_fits_a_1000_px_window_and_names_wrap_between_words(chromium, tmp_path, kind):
+    if kind == "line-follow":
+        results = line_runs()
+    else:
+        results = [validated(f"submissions/{r.path.rsplit('/', 1)[1]}/worlds/my_world.world",
+                             findings=[OPEN_FINDING, LIDAR_WARNING]) for r in line_runs()]
+    path = tmp_path / "index.html"
+    path.write_bytes(index_page(index_rows(results, {r.path: "pages/x.html" for r in results}), "worldgen run"))
+    with open_page(chromium, path, viewport=(1000, 800)) as probe:
+        page = probe.page
+        page.evaluate("document.querySelectorAll('details').forEach(d => { d.open = true; })")
+        width = page.evaluate("document.documentElement.scrollWidth")
+        print(f"\n{kind}: {len(header_labels(parse(path.read_bytes())))} columns, {width} px wide at 1000 px")
+        assert width <= 1000
+        assert page.evaluate(SPLIT_WORDS) == []
+        assert page.evaluate("document.querySelector('td.name').offsetHeight") > 0
+        page.locator("thead th", has_text="submission").click()   # the sort arrow, shown, still fits
+        assert page.evaluate("document.documentElement.scrollWidth") <= 1000
+        assert probe.console_errors == [] and probe.left_file == []

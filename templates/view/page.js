@@ -69,6 +69,10 @@ async function meshGeometries() {
   return found;
 }
 
+function triangles(geometry) {
+  return (geometry.index ? geometry.index.count : geometry.attributes.position.count) / 3;
+}
+
 function label(object, text) { object.userData.label = text; return object; }
 
 function sizeText(item) {
@@ -96,6 +100,7 @@ class WorldView {
     container.prepend(this.renderer.domElement);
     this.scene = new THREE.Scene();
     this.pickable = [];
+    this.solids = [];   // what hides what is behind it: opaque walls and obstacles
     this.cut = [new THREE.Plane(new THREE.Vector3(0, 0, -1), data.plan.z[1])];
     this.cutMaterials = [];
     this.top = false;
@@ -145,6 +150,9 @@ class WorldView {
       const kind = item.g === 'marking' ? 'floor marking' : item.g;
       this.scene.add(label(mesh, `${kind} ${item.n}: ${sizeText(item)}`));
       this.pickable.push(mesh);
+      if ((item.g === 'wall' || item.g === 'obstacle') && !(item.a < 1) && triangles(geometry) <= 20000) {
+        this.solids.push(mesh);   // (a bigger mesh is left out: testing the first view against it would be slow)
+      }
     }
     this.plan = new THREE.Group();
     this.plan.add(flat(data.plan.walls, WALL_CUT, data.plan.z[1] + 0.001));
@@ -187,6 +195,8 @@ class WorldView {
       el('btn-rays').classList.add('on');
     }
     this.legend();
+    this.homeAt = this.chooseHome();
+    this.home();
   }
 
   buildRobot(spec, shown) {
@@ -256,9 +266,74 @@ class WorldView {
   home() {
     const c = this.centre;
     const d = this.span * 1.25 + 2;
-    this.perspective.position.set(c.x - d * 0.4, c.y - d * 0.7, d * 0.95);
+    if (this.homeAt) this.perspective.position.copy(this.homeAt);
+    else this.perspective.position.set(c.x - d * 0.4, c.y - d * 0.7, d * 0.95);
     this.controls.target.copy(c);
     this.controls.update();
+  }
+
+  focusPoints() {
+    // What the first 3D view must show: the robot (its centre and four points of its ring) where it starts, the
+    // path a run takes (24 points of it), and the other robots
+    const points = [];
+    const robot = (x, y, r) => {
+      points.push(new THREE.Vector3(x, y, 0.1));
+      for (let k = 0; k < 4; k++) {
+        points.push(new THREE.Vector3(x + r * Math.cos(k * Math.PI / 2), y + r * Math.sin(k * Math.PI / 2), 0.01));
+      }
+    };
+    if (replay && replay.t.length) {
+      robot(replay.x[0], replay.y[0], data.robot.radius + 0.02);
+      const step = Math.max(1, Math.ceil(replay.t.length / 24));
+      for (let i = step; i < replay.t.length; i += step) points.push(new THREE.Vector3(replay.x[i], replay.y[i], 0.01));
+    } else if (data.robot.spawn) robot(data.robot.spawn[0], data.robot.spawn[1], data.robot.radius + 0.02);
+    for (const other of data.others || []) if (other.spawn) robot(other.spawn[0], other.spawn[1], other.radius + 0.02);
+    return points;
+  }
+
+  chooseHome() {
+    // Where the 3D view starts: looking at the world's centre from the south-west, 50 degrees up; when a wall or
+    // an obstacle would hide the robot or its path from there (a robot near the wall in front, tall walls), from
+    // another side, then from higher up, until every point of focusPoints() is in the picture and in sight
+    const points = this.focusPoints();
+    const c = this.centre, d = this.span * 1.25 + 2;
+    const distance = d * Math.hypot(0.4, 0.7, 0.95), side = Math.atan2(-0.7, -0.4);
+    const eye = this.perspective.clone();
+    const w = this.container.clientWidth, h = this.container.clientHeight;
+    if (w && h) eye.aspect = w / h;
+    eye.updateProjectionMatrix();
+    this.scene.updateMatrixWorld();
+    const caster = new THREE.Raycaster();
+    let best = null;
+    const elevations = [Math.atan2(0.95, Math.hypot(0.4, 0.7)), ...[60, 70, 80, 88].map(e => e * Math.PI / 180)];
+    for (const elevation of elevations) {
+      for (const turn of [0, 1, -1, 2]) {
+        const a = side + turn * Math.PI / 2, across = distance * Math.cos(elevation);
+        const at = new THREE.Vector3(c.x + across * Math.cos(a), c.y + across * Math.sin(a),
+          distance * Math.sin(elevation));
+        const hidden = this.hiddenFrom(at, points, eye, caster);
+        if (hidden === 0) return at;
+        if (!best || hidden < best.hidden) best = { at: at, hidden: hidden };
+      }
+    }
+    return best.at;
+  }
+
+  hiddenFrom(at, points, eye, caster) {
+    // How many of the points an eye at `at`, looking at the centre, would not see
+    eye.position.copy(at);
+    eye.lookAt(this.centre);
+    eye.updateMatrixWorld();
+    let hidden = 0;
+    for (const p of points) {
+      const seen = p.clone().project(eye);
+      if (Math.abs(seen.x) > 0.95 || Math.abs(seen.y) > 0.95 || seen.z > 1) { hidden += 1; continue; }
+      const towards = p.clone().sub(at);
+      caster.set(at, towards.clone().normalize());
+      caster.far = towards.length() - 0.01;
+      if (caster.intersectObjects(this.solids, false).length) hidden += 1;
+    }
+    return hidden;
   }
 
   setTop(top) {

@@ -1,6 +1,7 @@
 """A class's grades as a folder of pages (``validate|run FOLDER --html DIR``): ``index.html`` (:mod:`.index`), a row
 per submission, linking to ``pages/NAME.html``, each submission's own 3D page — its world with the findings
-(``validate``), or its run replayed (``run``).
+(``validate``), or its run replayed (``run``). The pages share one three.js, ``pages/three.js``
+(:func:`~worldgen.view.page.library_script`): 40 pages of a class room make 2.4 MB, not 36 MB.
 
 The folder is written all or nothing (:func:`worldgen.core.fsio.write_tree`). Like ``--junit``, it replaces the
 report a previous run wrote there, and nothing else: a folder that is not empty and holds no worldgen index is
@@ -14,7 +15,7 @@ from pathlib import Path
 from typing import Callable, Sequence
 
 from ..check.report import Result
-from .page import Panel, render_page, replay_page, world_source
+from .page import Panel, library_script, render_page, replay_page, world_source
 from ..core.errors import InputError, WorldgenError
 from ..core.fsio import write_tree
 from ..spec.model import ROBOT_MODELS
@@ -26,6 +27,7 @@ INDEX = "index.html"
 PAGES = "pages"
 MARKER = '<meta name="worldgen-report" content="index">'   # only the index of a report has it
 BACK = f"../{INDEX}"   # a submission's page's link to the index
+LIBRARY = "three.js"   # the pages' shared three.js, beside them in pages/ (a submission's page is NAME.html)
 
 
 def page_names(names: Sequence[str]) -> list[str]:
@@ -53,7 +55,7 @@ def panel(result: Result) -> dict:
 
 def check_report_folder(folder: Path) -> None:
     """Refuse (InputError) a ``--html`` folder that holds anything but a report an earlier ``--html`` wrote (its
-    index, with :data:`MARKER`, and ``pages/*.html``): the folder is replaced as a whole."""
+    index, with :data:`MARKER`, ``pages/*.html`` and ``pages/three.js``): the folder is replaced as a whole."""
     if not folder.exists() and not folder.is_symlink():
         return
     if not folder.is_dir() or folder.is_symlink():
@@ -66,8 +68,10 @@ def check_report_folder(folder: Path) -> None:
     pages = folder / PAGES
     others = [e for e in entries if e.name not in (INDEX, PAGES)]
     if pages.exists():
-        others += [e for e in pages.iterdir() if not (e.is_file() and e.suffix == ".html")] if pages.is_dir() \
-            else [pages]
+        if pages.is_dir():
+            others += [e for e in pages.iterdir() if not (e.is_file() and (e.suffix == ".html" or e.name == LIBRARY))]
+        else:
+            others.append(pages)
     if not ours or others:
         raise InputError(f"{folder} holds files that are not a worldgen report"
                          + (f" ({others[0].name}, …)" if others else ""),
@@ -83,8 +87,9 @@ def write_report(folder: Path, results: list[Result], page_of: Callable[[Result]
         if page is not None:
             files[name] = page
         hrefs.append(name if page is not None else None)
-    summary = f"{sum(r.ok for r in results)} of {len(results)} pass"
-    files[INDEX] = index_page(index_rows(results, hrefs), title, summary)
+    if files:
+        files[f"{PAGES}/{LIBRARY}"] = library_script()
+    files[INDEX] = index_page(index_rows(results, hrefs), title)   # it counts the verdicts itself, once
     return write_tree(folder, files, force=True)
 
 
@@ -117,13 +122,16 @@ def validate_page(result: Result, model_paths=()) -> bytes | None:
     known = result.robot in ROBOT_MODELS or Path(result.robot).is_file()   # a model, or --robot FILE
     source = dataclasses.replace(source, spawn=result.spawn or source.spawn,
                                  robot=result.robot if known else source.robot)
-    return render_page(world_data(source), Panel(result.name, source.subtitle, back=BACK, **panel(result)))
+    return render_page(world_data(source), Panel(result.name, source.subtitle, back=BACK, **panel(result)),
+                       library=LIBRARY)
 
 
 def run_page(result: Result, world, trace: dict, title: str | None = None, back: str | None = None) -> bytes:
     """A graded run's page: the world it ran in (``world``: :class:`worldgen.bridge.world.World`, or anything with
     its ``path``, ``scene``, ``spawn`` and ``robot``), the robot replayed along its trace, the verdict and
-    findings; ``back``: a link to the index (:data:`BACK` in a report folder)."""
+    findings; ``back``: a link to the index (:data:`BACK` in a report folder), and then three.js is the folder's
+    shared :data:`LIBRARY`, not inlined: without it, the page is one self-contained file."""
     source = world_source(world.path, world.scene, world.spawn, world.robot)
     return replay_page(source, run_replay(trace), Panel(title or result.name, f"in {Path(str(world.path)).name}",
-                                                        back=back, **panel(result)))
+                                                        back=back, **panel(result)),
+                       library=LIBRARY if back is not None else None)

@@ -128,6 +128,8 @@ def _number(value) -> bool:
 
 
 def _text(value, unit: str, signed: bool = False) -> str:
+    """``value`` as the table shows it: its unit's decimals (:data:`DIGITS`), ``signed`` with a + on a positive
+    value, and never a negative zero (−0.001 m reads 0.00 m: no sign on a zero)."""
     if value is None:
         return "–"
     if not _number(value):
@@ -138,7 +140,8 @@ def _text(value, unit: str, signed: bool = False) -> str:
         text = f"{value:+d}" if signed else str(value)
     else:
         digits = DIGITS.get(unit, 2)
-        text = f"{value:+.{digits}f}" if signed else f"{value:.{digits}f}"
+        value = round(value, digits) + 0.0   # + 0.0: -0.0 becomes 0.0
+        text = f"{value:+.{digits}f}" if signed and value else f"{value:.{digits}f}"
     return text + ("%" if unit == "%" else f" {unit}" if unit else "")
 
 
@@ -171,7 +174,7 @@ def _validate_metrics(r: Result) -> list[dict]:
     m = r.metrics
     out = []
     if r.spawn:
-        out.append(_metric("spawn", "spawn", "", "(" + ", ".join(f"{round(v, 3):g}" for v in r.spawn) + ")"))
+        out.append(_metric("spawn", "spawn", "", "(" + ", ".join(f"{round(v, 3) + 0.0:g}" for v in r.spawn) + ")"))
     out.append(_metric("robot", "robot", "", r.robot.replace("\\", "/").rsplit("/", 1)[-1]))
     if "enclosed" in m:
         out.append(_metric("enclosed", "enclosed", "", _enclosed_text(m)))
@@ -279,6 +282,21 @@ def _json_data(rows: list[dict]):
     return Markup(text.replace("</", "<\\/").replace("<!--", "\\u003c!--"))
 
 
+_WORD_END = re.compile(r"(?<=[/\\_.\-])")   # after a / \ _ . or -: where a name may wrap
+LONGEST_PIECE = 24   # characters of a name without such a place before one is made
+
+
+def _breakable(text) -> str:
+    """``text`` escaped, with a place to wrap (``<wbr>``) after each ``/``, ``\\``, ``_``, ``.`` and ``-`` (and every
+    :data:`LONGEST_PIECE` characters in a piece without one): a name wraps between its words, never inside one,
+    and a name with no such place cannot widen the table past the window."""
+    from markupsafe import Markup, escape
+
+    pieces = [part[i:i + LONGEST_PIECE] for part in _WORD_END.split(str(text))
+              for i in range(0, len(part), LONGEST_PIECE)]
+    return Markup("<wbr>").join(escape(piece) for piece in pieces)
+
+
 _NOT_TEXT = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\x7f\ud800-\udfff]")   # controls; a file name's undecodable bytes
 
 
@@ -303,5 +321,6 @@ def _env():
                                  undefined=jinja2.StrictUndefined, keep_trailing_newline=True, trim_blocks=True,
                                  lstrip_blocks=True)
         env.filters["csp_hash"] = _csp_hash
+        env.filters["breakable"] = _breakable
         _ENV["env"] = env
     return env

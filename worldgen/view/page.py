@@ -2,6 +2,11 @@
 and the data it draws (:mod:`.scene_data`, and for a run :mod:`.replay`). Opening it loads nothing from anywhere:
 every script is inlined as text and linked through ``blob:`` URLs by a small loader (``templates/view/boot.js``).
 
+The pages of a report folder (:mod:`.grades`) share one copy of three.js instead: :func:`library_script`, a plain
+script beside them holding the same texts, which each page loads by its file name (``render_page(...,
+library="three.js")``; the page's security policy lets it load scripts of its own origin, which from ``file://`` is
+a file, and nothing else), so that 40 pages carry 0.9 MB of three.js once, not 40 times.
+
 The same inputs give the same bytes: the data is JSON of rounded values in a fixed order, and nothing in the page
 depends on the time or the machine it was written on.
 """
@@ -86,17 +91,18 @@ class Panel:
     back: Optional[str] = None
 
 
-def render_page(data: dict, panel: Panel) -> bytes:
-    """The HTML page for ``data`` (a world's, with ``replay`` for a run), ``panel`` beside it."""
+def render_page(data: dict, panel: Panel, library: Optional[str] = None) -> bytes:
+    """The HTML page for ``data`` (a world's, with ``replay`` for a run), ``panel`` beside it; three.js inlined, or
+    with ``library`` (a file name beside the page, written by :func:`library_script`) loaded from there."""
     from markupsafe import Markup
 
     libraries = modules()
     boot = _script_text("boot.js", _template_text("boot.js"))
-    code = [(name, Markup(_script_text(name, libraries[name]))) for name in LIBRARIES]
+    code = [] if library else [(name, Markup(_script_text(name, libraries[name]))) for name in LIBRARIES]
     replay = data.get("replay")
     html = render_template(
         "view/page.html.j2", title=panel.title, subtitle=panel.subtitle, css=Markup(_template_text("page.css")),
-        data_json=Markup(data_json(data)), libraries=code,
+        data_json=Markup(data_json(data)), libraries=code, library=library,
         app=Markup(_script_text("page.js", _template_text("page.js"))),
         boot=Markup(boot), boot_hash=_csp_hash(f"\n{boot}\n"), three_version=THREE_VERSION,
         three_license=Markup(_script_text("LICENSE", libraries["LICENSE"])), replay=replay is not None,
@@ -104,6 +110,22 @@ def render_page(data: dict, panel: Panel) -> bytes:
         findings=finding_items(panel.findings), verdict=panel.verdict, verdict_text=panel.verdict_text,
         metrics=list(panel.metrics), back=panel.back)
     return html.encode("utf-8")
+
+
+def library_script() -> bytes:
+    """The shared three.js of a report folder's pages: a plain (not module) script defining
+    ``window.worldgenLibraries``, the texts the page's loader links as it links inlined ones, with three.js's
+    licence at its top. A plain script, because chromium refuses a module script from ``file://`` (its origin is
+    opaque); the texts as JSON in ASCII (escapes for anything else), so that they read the same in any charset."""
+    libraries = modules()
+    licence = libraries["LICENSE"].strip()
+    if "*/" in licence:
+        raise WorldgenError("three.js's LICENSE cannot go in a comment: it holds */",
+                            hint="please report this to the worldgen developers")
+    texts = json.dumps({name: libraries[name] for name in LIBRARIES}, ensure_ascii=True, separators=(",", ":"))
+    return (f"/* three.js {THREE_VERSION} with its OrbitControls, GLTFLoader and BufferGeometryUtils, for the "
+            f"worldgen pages beside this file.\n\n{licence}\n*/\nwindow.worldgenLibraries = {texts};\n"
+            ).encode("utf-8")
 
 
 def world_page(path: str | Path, *, spawn: tuple[float, float, float] | None = None, robot: str | None = None,
@@ -152,8 +174,13 @@ def world_facts(data: dict) -> list[tuple[str, str]]:
     robot = data["robot"]
     if robot["spawn"] is not None:
         x, y, yaw = robot["spawn"]
-        facts.append((robot["model"], f"({x:.2f}, {y:.2f}), yaw {math.degrees(yaw):.0f}°"))
+        facts.append((robot["model"], f"({_fixed(x, 2)}, {_fixed(y, 2)}), yaw {_fixed(math.degrees(yaw), 0)}°"))
     return facts
+
+
+def _fixed(value: float, digits: int) -> str:
+    """``value`` with ``digits`` decimals, and never a negative zero (-0.001 reads 0.00, not -0.00)."""
+    return f"{round(value, digits) + 0.0:.{digits}f}"
 
 
 def _scene_findings(scene) -> list[Finding]:
@@ -177,14 +204,15 @@ def world_source(path: str | Path, scene, spawn=None, robot: str = "burger"):
     return dataclasses.replace(source, spawn=tuple(spawn) if spawn is not None else source.spawn, robot=robot)
 
 
-def replay_page(source, replay: dict, panel: Panel) -> bytes:
+def replay_page(source, replay: dict, panel: Panel, library: Optional[str] = None) -> bytes:
     """The page of a run: the world of ``source`` (:func:`world_source`), the robot replayed along ``replay``
-    (:mod:`.replay`), ``panel`` (the verdict, metrics and findings) beside it."""
+    (:mod:`.replay`), ``panel`` (the verdict, metrics and findings) beside it; ``library``: as
+    :func:`render_page` takes it."""
     data = world_data(source)
     data["replay"] = replay
     data["robot"]["spawn"] = [replay["x"][0], replay["y"][0], replay["yaw"][0]] if replay["t"] else \
         data["robot"]["spawn"]
-    return render_page(data, panel)
+    return render_page(data, panel, library)
 
 
 def drive_page(world: str | Path, result: dict, model_paths: Sequence[str | Path] = (),
@@ -197,10 +225,10 @@ def drive_page(world: str | Path, result: dict, model_paths: Sequence[str | Path
     run = result["runs"][0]
     if result["behaviour"] == "spin":
         metrics = [("turned", f"{math.degrees(run['turned']):.0f}°"),
-                   ("drift at the end", f"{run['drift'] * 1000:.1f} mm"),
-                   ("largest drift", f"{run['max_drift'] * 1000:.1f} mm")]
+                   ("drift at the end", f"{_fixed(run['drift'] * 1000, 1)} mm"),
+                   ("largest drift", f"{_fixed(run['max_drift'] * 1000, 1)} mm")]
     else:
-        metrics = [(label, "–" if run.get(key) is None else f"{run[key]:.3f} {unit}".strip())
+        metrics = [(label, "–" if run.get(key) is None else f"{_fixed(run[key], 3)} {unit}".strip())
                    for key, label, unit in (("final_distance", "final distance", "m"),
                                             ("steady_state_error", "error", "m"), ("min_distance", "closest", "m"),
                                             ("overshoot", "overshoot", "m"), ("settling_time", "settling time", "s"))]
