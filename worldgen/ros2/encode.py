@@ -1,6 +1,8 @@
 """The robot interface's message values (:mod:`worldgen.interface`: nested dicts in ROS 2's field names, times as
 float seconds) as the DDS samples of :mod:`.msgs`, and a velocity command back as (v, ω)."""
 
+from __future__ import annotations
+
 import dataclasses
 from typing import Any, Dict, Type
 

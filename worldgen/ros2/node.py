@@ -15,6 +15,8 @@ until it exists, or until ``expect`` other DDS participants have matched some to
 (jazzy: ``twist`` when the bridge is configured for Twist).
 """
 
+from __future__ import annotations
+
 import json
 import math
 import os
@@ -30,7 +32,7 @@ from ..interface.camera import CameraIO
 from ..interface.loop import Wire, run_loop
 from ..interface.signals import deliver_interrupts, ignore_interrupts
 from ..interface.robot import PLUGINS, RobotIO
-from ..interface.topics import Qos, camera_topics, clock_every, frame, join, topics
+from ..interface.topics import TASK_INPUTS, Qos, camera_topics, clock_every, frame, join, topics
 from ..robots import robot_urdf
 from ..robots.profile import robot_profile
 from ..sim.session import Session
@@ -41,7 +43,7 @@ from .participant import Discovery, Participant, endpoint_qos
 from .typehash import type_hash
 
 START_WAIT = 30.0        # s of real time to wait for the start
-SETTLE = 0.2             # s of real time after the nodes' endpoints first match, for the rest to match
+SETTLE = 0.2             # s of real time after the nodes' endpoints first match, at most, for the rest to match
 LOOK_EVERY = 0.25        # s of real time between looks at the others' endpoints
 
 
@@ -218,6 +220,9 @@ class DdsWire(Wire):
         if self.person is not None:
             self.trace["person"].append([t, *self.person_xy(t)])
 
+    def fast_heard(self) -> bool:
+        return any(robot.heard("imu") for robot in self.robots)
+
     def publish_fast(self, dt: float) -> None:
         for robot in self.robots:
             robot.publish_imu(dt, self.session.t)
@@ -350,24 +355,45 @@ def matched(wire: DdsWire) -> int:
     return count
 
 
+def matches(wire: DdsWire) -> tuple:
+    """Every endpoint of the robots' matched count, in a fixed order (what changes while nodes still join)."""
+    return tuple((r.cmd_reader.get_subscription_matched_status().current_count,
+                  *(w.get_publication_matched_status().current_count for w in r.writers.values()))
+                 for r in wire.robots)
+
+
+def does_the_task(wire: DdsWire, need: str | None) -> bool:
+    """Whether some node drives the graded robot and, when the task needs a topic of it (``need``), reads it."""
+    robot = wire.graded_robot
+    drives = robot.cmd_reader.get_subscription_matched_status().current_count > 0
+    return drives and (need is None or need not in robot.writers or robot.heard(need))
+
+
 def wait_for_start(wire: DdsWire, watcher: Watcher, config: dict) -> None:
     """Hold simulated time at 0 (publishing /clock) until the start file exists, or until ``expect`` other
-    participants are there and some endpoint of theirs matches the robot's, then :data:`SETTLE`."""
+    participants are there, some endpoint of theirs matches the robot's, and they are ready: the matches the same
+    as at the previous look, some node driving the graded robot and reading what the task (``task``) needs
+    (:data:`worldgen.interface.topics.TASK_INPUTS`); or :data:`SETTLE` after the first match."""
     start_file, expect = config.get("start_file"), int(config.get("expect") or 0)
     if not start_file and not expect:   # worldgen sim: at once
         return
+    need = TASK_INPUTS.get(config.get("task") or "")
     deadline = time.monotonic() + START_WAIT
-    seen = None
+    seen, previous, clock_at = None, None, 0.0
     while time.monotonic() < deadline and not wire.stopped.is_set():
-        wire.publish_clock()
+        now = time.monotonic()
+        if now >= clock_at:
+            wire.publish_clock()
+            clock_at = now + 0.02
         watcher.look()
         if start_file and os.path.exists(start_file):
             return
         if expect and len(watcher.others) >= expect and matched(wire):
-            seen = seen or time.monotonic()
-            if time.monotonic() - seen >= SETTLE:
+            seen = seen or now
+            state, previous = previous, matches(wire)
+            if now - seen >= SETTLE or (state == previous and does_the_task(wire, need)):
                 return
-        time.sleep(0.02)
+        time.sleep(0.005)
 
 
 def _pids(config: dict) -> list:
