@@ -54,18 +54,23 @@ def validate(paths, robot, spawn, launch_file, model_paths, fmt, junit, jobs, li
             html)
     if skip_sim:
         return _validate(*args)
-    from ..sim.forkserver import forking
+    import importlib
 
-    # first, while this process runs no thread and has imported little: the simulations' fork server, which
-    # imports pybullet and the simulator while this process reads the inputs
+    from ..sim.forkserver import forking, one_blas_thread
+
+    # the simulations' fork server, forked while this process runs one thread (numpy's BLAS held to it) and has
+    # imported what both use; the server imports pybullet and the simulator while this process reads the inputs
+    one_blas_thread()
+    for name in SHARED_MODULES:
+        importlib.import_module(name)
     with forking(SIM_MODULES):
         _validate(*args)
 
 
-# what the simulations use, imported once in the server: the job, the reader (a small world's job reads it
-# itself: check.sim_run), pybullet and the session (a client connected ahead: sim.session.warm)
-SIM_MODULES = ("worldgen.check.sim_job", "worldgen.check.sources", "worldgen.sdf.reader", "worldgen.sim.session:warm",
-               "worldgen.sim.behaviours", "worldgen.sim.lidar")
+# imported here before the fork: the checks, the reader (a small world's job reads it itself: check.sim_run), the job
+SHARED_MODULES = ("worldgen.check.validate", "worldgen.check.sim_job", "worldgen.check.sources", "worldgen.sdf.reader")
+# imported in the server only: pybullet and the session (a client connected ahead: sim.session.warm)
+SIM_MODULES = ("worldgen.sim.session:warm", "worldgen.sim.behaviours", "worldgen.sim.lidar")
 
 
 def _validate(paths, robot, spawn, launch_file, model_paths, fmt, junit, jobs, lidar_no_hit, shard, skip_sim,

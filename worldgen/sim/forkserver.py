@@ -49,6 +49,13 @@ _SERVER: ForkServer | None = None
 _BLAS_THREADS = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
 
 
+def one_blas_thread() -> None:
+    """Hold BLAS (numpy's, scipy's) to the calling thread in this process and its children: imported after
+    this, numpy starts no thread of its own, so the process may still fork a server."""
+    for name in _BLAS_THREADS:
+        os.environ[name] = "1"
+
+
 def thread_count() -> int:
     """Threads of this process, native ones included (Linux: /proc/self/task), else Python's own."""
     try:
@@ -176,8 +183,7 @@ class Run:
 
 def _serve(listener: socket.socket, alive: int, preload: tuple[str, ...]) -> None:
     _detach()
-    for name in _BLAS_THREADS:   # BLAS started here would run threads: a fork of this must copy all there is
-        os.environ[name] = "1"
+    one_blas_thread()   # BLAS started here would run threads: a fork of this must copy all there is
     signal.signal(signal.SIGINT, signal.SIG_IGN)   # Ctrl-C ends the command, and the command ends this
     for name in preload:
         module, _, function = name.partition(":")
