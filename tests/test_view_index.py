@@ -447,13 +447,26 @@ def test_the_report_gives_the_count_once(tmp_path):
     assert doc.get_element_by_id("summary").text_content() == "5 submissions: 1 pass, 0 warn, 4 fail"
 
 
-# JavaScript: each word (letters and digits) of a name cell whose characters are not all on one line
+def test_names_may_wrap_between_their_words_and_numbers_never():
+    result = validated("submissions/evelyn_montgomery-smith_2024/my_world.world")
+    result.spawn, result.robot = (3.5, -1.0, 1.5708), "waffle_pi"
+    page = index_page(index_rows([result], {result.path: "pages/x.html"}), "t")
+    doc = parse(page)
+    link = re.search(r'<a href="pages/x.html">(.*?)</a>', page.decode("utf-8")).group(1)
+    assert link.split("<wbr>") == ["submissions/", "evelyn_", "montgomery-", "smith_2024/", "my_", "world.", "world"]
+    assert cell(doc, result.name, "submission").text_content() == result.name
+    assert cell(doc, result.name, "spawn").text_content() == "(3.5, -1, 1.571)"
+    assert not cell(doc, result.name, "spawn").findall(".//wbr") and not cell(doc, result.name, "robot").findall(".//wbr")
+
+
+# JavaScript: each word (letters and digits; a number with its decimals) of a row's cell whose characters are not all
+# on one line
 SPLIT_WORDS = """() => {
   const split = [];
-  for (const cell of document.querySelectorAll('td.name')) {
+  for (const cell of document.querySelectorAll('tr[data-name] td')) {
     const walker = document.createTreeWalker(cell, NodeFilter.SHOW_TEXT);
     for (let node = walker.nextNode(); node; node = walker.nextNode()) {
-      for (const word of node.data.matchAll(/[A-Za-z0-9]+/g)) {
+      for (const word of node.data.matchAll(/[0-9]+(\\.[0-9]+)?|[A-Za-z0-9]+/g)) {
         const range = document.createRange();
         range.setStart(node, word.index);
         range.setEnd(node, word.index + word[0].length);
@@ -473,6 +486,8 @@ def test_in_a_browser_a_class_fits_a_1000_px_window_and_names_wrap_between_words
     else:
         results = [validated(f"submissions/{r.path.rsplit('/', 1)[1]}/worlds/my_world.world",
                              findings=[OPEN_FINDING, LIDAR_WARNING]) for r in line_runs()]
+        for result in results:
+            result.spawn, result.robot = (3.5, -1.0, 1.5708), "waffle_pi"
     path = tmp_path / "index.html"
     path.write_bytes(index_page(index_rows(results, {r.path: "pages/x.html" for r in results}), "worldgen run"))
     with open_page(chromium, path, viewport=(1000, 800)) as probe:

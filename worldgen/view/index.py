@@ -282,18 +282,22 @@ def _json_data(rows: list[dict]):
     return Markup(text.replace("</", "<\\/").replace("<!--", "\\u003c!--"))
 
 
-_WORD_END = re.compile(r"(?<=[/\\_.\-])")   # after a / \ _ . or -: where a name may wrap
+_WORD_END = re.compile(r"(?<=[/\\])|(?<=[_.\-])(?=[A-Za-z])")   # after / or \, or a _ . - before a letter
 LONGEST_PIECE = 24   # characters of a name without such a place before one is made
+SHORT = 12           # a text this long or shorter is never wrapped (waffle_pi, subs/alice)
 
 
 def _breakable(text) -> str:
-    """``text`` escaped, with a place to wrap (``<wbr>``) after each ``/``, ``\\``, ``_``, ``.`` and ``-`` (and every
-    :data:`LONGEST_PIECE` characters in a piece without one): a name wraps between its words, never inside one,
-    and a name with no such place cannot widen the table past the window."""
+    """``text`` escaped, with a place to wrap (``<wbr>``) after each ``/`` and ``\\`` and each ``_``, ``.`` or ``-``
+    before a letter (not inside a number: ``1.571``, ``-1``), and every :data:`LONGEST_PIECE` characters of a piece
+    without one: a name wraps between its words, never inside one, and a name with no such place cannot widen the
+    table past the window. A text of :data:`SHORT` characters or fewer is left whole."""
     from markupsafe import Markup, escape
 
-    pieces = [part[i:i + LONGEST_PIECE] for part in _WORD_END.split(str(text))
-              for i in range(0, len(part), LONGEST_PIECE)]
+    text = str(text)
+    if len(text) <= SHORT:
+        return escape(text)
+    pieces = [part[i:i + LONGEST_PIECE] for part in _WORD_END.split(text) for i in range(0, len(part), LONGEST_PIECE)]
     return Markup("<wbr>").join(escape(piece) for piece in pieces)
 
 
