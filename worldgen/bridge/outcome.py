@@ -248,27 +248,36 @@ class Outputs:
     force: bool = False
 
 
-def wait_for_end(simulator: Child, options: RunOptions, required: list[Child], supervisor: Supervisor
-                 ) -> Child | None:
-    """Until the simulator has run its duration (or a time limit); a required node that exits first stops the
-    simulator (which then writes its trace) and is returned."""
+def wait_for_end(simulator: Child, options: RunOptions, required: list[Child], supervisor: Supervisor,
+                 trace_file: Path | None = None) -> Child | None:
+    """Until the simulator has written ``trace_file`` or ended (its duration run, or a time limit); a required
+    node that exits first stops the simulator (which then writes its trace) and is returned."""
     deadline = time.monotonic() + end_limit(options)
     while simulator.running and time.monotonic() < deadline:
+        if trace_file is not None and trace_file.is_file():
+            return None
         ended = next((c for c in required if not c.running), None)
         if ended is not None:
             supervisor.stop(simulator)
             return ended
-        time.sleep(0.05)
+        time.sleep(0.01)
     return None
 
 
 def finish_run(simulator: Child, children: list[Child], nodes: list[NodeSpec], options: RunOptions,
                supervisor: Supervisor, trace_file: Path) -> tuple[dict, dict[str, bool], Child | None]:
     """Wait for the run's end (:func:`wait_for_end`), stop everything, and read the simulator's trace: the trace,
-    which nodes were still running at the end, and the required node whose exit ended it (or None)."""
-    ended_by = wait_for_end(simulator, options, [c for c, n in zip(children, nodes) if n.required], supervisor)
+    which nodes were still running at the end, and the required node whose exit ended it (or None). Once the
+    trace is written (the simulator writes it whole, and last) every process is ended at once, nothing of theirs
+    left to wait for (:meth:`.Supervisor.end_all`); otherwise each is stopped in order (the simulator, stopped,
+    writes what it has)."""
+    ended_by = wait_for_end(simulator, options, [c for c, n in zip(children, nodes) if n.required], supervisor,
+                            trace_file)
     alive = {c.name: c.running for c in children}
-    supervisor.stop_all()
+    if trace_file.is_file():
+        supervisor.end_all()
+    else:
+        supervisor.stop_all()
     if not trace_file.is_file():
         raise WorldgenError(f"the simulation ended without a result: {simulator.last_error_line() or 'no output'}",
                             hint="please report this to the worldgen developers")

@@ -32,6 +32,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..core.errors import WorldgenError
+from .keeper import descendants, process_table
 from .logtail import Kept, read_kept
 
 STOP_GRACE = 3.0   # s after SIGINT before SIGTERM, and after SIGTERM before SIGKILL
@@ -288,8 +289,39 @@ class Supervisor:
                         pass
             for child in children:
                 stop_group(child.proc, grace)
+        self._sweep(min(grace, SWEEP_GRACE))
+
+    def end_all(self) -> None:
+        """End every child at once, with SIGKILL to each one's group, when every process of the run is in one of
+        those groups (nothing is lost: no child gets to run its shutdown, and none is waited for); when some
+        process left its group (a node's daemon), :meth:`stop_all` instead, so that the node may still end it
+        as it shuts down, as it always could. For a run whose result is already written."""
+        if self._link is None or not self._contained():
+            self.stop_all()
+            return
+        for child in self.children:
+            if child.running:
+                child.stopped_by_us = True
+            try:
+                os.killpg(child.proc.pid, signal.SIGKILL)
+            except (ProcessLookupError, PermissionError):
+                pass
+        deadline = time.monotonic() + 10.0
+        for child in self.children:
+            while (child.proc.poll() is None or _group_alive(child.proc.pid)) and time.monotonic() < deadline:
+                time.sleep(0.005)
+        self._sweep(SWEEP_GRACE)
+
+    def _contained(self) -> bool:
+        """Whether every living process below the keeper is in the process group of a child."""
+        groups = {c.proc.pid for c in self.children}
+        table = process_table()
+        return all(table[pid][1] in groups for pid in descendants(self._link.proc.pid, table) if pid in table)
+
+    def _sweep(self, grace: float) -> None:
+        """Have the keeper end whatever is still below it, recorded in :attr:`left`."""
         if self._link is not None:
-            ended = self._link.sweep(min(grace, SWEEP_GRACE))
+            ended = self._link.sweep(grace)
             with self._lock:
                 known = {p.pid for p in self.left}
                 self.left += [Leftover(self._names.get(e["owner"]), e["pid"], e["cmd"])

@@ -10,6 +10,15 @@ go out at their update rate (30 Hz), the scans at the LiDAR's (5 Hz), the pictur
 after each scan that some node listens to, waits (at most 50 ms of real time) for the ``cmd_vel`` that answers it,
 so that a node reacting to scans reacts within the same scan period, as it does in Gazebo at real time.
 
+At rate 0 ``/clock`` goes out only as often as a node can tell (every message costs the simulator a write and
+every node a wake-up, and at full speed 2 400 of them in 20 simulated seconds were most of the loop's time): on a
+60 Hz lattice of simulated time (:data:`MAX_CLOCK_EVERY` steps), so that ``rospy.Rate`` loops and rclpy timers at
+any rate dividing 60 Hz (1, 2, 3, 4, 5, 6, 10, 12, 15, 20, 30, 60 Hz) wake exactly when they would with a clock
+every other step, and before every other message: at each drive update and scan (whose callbacks then read the
+time of the message), and every other step while some node listens to the IMU. A node can only learn the time
+from ``/clock``, when a message comes or when it wakes, and it wakes on the first ``/clock`` at or past its
+deadline; between those it cannot tell whether the clock went out.
+
 The transport's simulator object (a :class:`Wire`) publishes; this module only decides when.
 """
 
@@ -20,6 +29,7 @@ import time
 from .pacing import Backlog, Governor
 
 CLOCK_EVERY = 2          # physics steps per /clock and /imu message
+MAX_CLOCK_EVERY = 4      # physics steps per /clock at rate max, unless a message goes out between (see above)
 ANSWER_WAIT = 0.05       # s of real time to wait for the cmd_vel answering a scan at rate max
 PAUSED_CLOCK = 0.1       # s of real time between /clock messages while paused
 
@@ -43,6 +53,10 @@ class Wire:
 
     def publish_clock(self) -> None:
         raise NotImplementedError
+
+    def fast_heard(self) -> bool:
+        """Whether some node listens to what :meth:`publish_fast` sends (then, at rate max, /clock goes with it)."""
+        return True
 
     def publish_fast(self, dt: float) -> None:
         """Each robot's IMU (``dt`` apart), and any per-step state topics."""
@@ -95,6 +109,9 @@ def _step_loop(wire: Wire, rate: float, end_step: int | None, backlog: Backlog |
     scan_every = max(1, round(1.0 / (s.lidar.update_rate * dt))) if s.lidar is not None else 0
     person = wire.person
     governor = Governor(rate, backlog)
+    clock_every, sparse = wire.clock_every, rate <= 0 and wire.clock_every < MAX_CLOCK_EVERY
+    if sparse:
+        clock_every = MAX_CLOCK_EVERY
     step = 0
     while not wire.shut_down() and (end_step is None or step < end_step):
         wire.drain()
@@ -107,7 +124,7 @@ def _step_loop(wire: Wire, rate: float, end_step: int | None, backlog: Backlog |
             s.move_body(person[0], *wire.person_xy(s.t + dt))
         s.run(dt)
         step += 1
-        if step % wire.clock_every == 0:
+        if step % clock_every == 0 or sparse and _message_due(wire, step, drive_every, scan_every):
             wire.publish_clock()
         if step % CLOCK_EVERY == 0:
             wire.publish_fast(dt * CLOCK_EVERY)
@@ -119,3 +136,10 @@ def _step_loop(wire: Wire, rate: float, end_step: int | None, backlog: Backlog |
             listened = wire.publish_scans()
             if rate <= 0 and listened and wire.commanded():
                 wire.graded.answered.wait(ANSWER_WAIT)
+
+
+def _message_due(wire: Wire, step: int, drive_every: int, scan_every: int) -> bool:
+    """Whether a message goes out at physics step ``step`` (drive update, scan, or a listened IMU step), so that
+    a sparse ``/clock`` must go out first."""
+    return (step % drive_every == 0 or (scan_every and step % scan_every == 0) or
+            (step % CLOCK_EVERY == 0 and wire.fast_heard()))

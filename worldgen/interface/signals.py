@@ -22,6 +22,11 @@ def deliver_interrupts() -> None:
     signal.pthread_sigmask(signal.SIG_UNBLOCK, set(STOP_SIGNALS))
 
 
+def pending_interrupt() -> bool:
+    """Whether a stop signal came while they are held (the simulator still starting)."""
+    return bool(set(STOP_SIGNALS) & signal.sigpending())
+
+
 def ignore_interrupts() -> None:
     """From now on the stop signals do nothing (the trace is being written)."""
     for sig in STOP_SIGNALS:

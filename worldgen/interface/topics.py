@@ -66,6 +66,9 @@ def frame(prefix: str, name: str) -> str:
 
 
 CLOCK_HZ, DRIVE_HZ, SCAN_HZ, IMU_HZ = 120.0, 30.0, 5.0, 120.0
+# The topic (key) a task's node must subscribe to before simulated time starts (besides publishing cmd_vel): the
+# tasks judged on what the LiDAR sees. A run waits for it, so that the first scan reaches the node.
+TASK_INPUTS = {"stop-at-wall": "scan", "wall-follow": "scan", "person-follow": "scan"}
 
 # ROS 1 Noetic + Gazebo Classic 11: gazebo_ros and turtlebot3_gazebo's plugins (../shared/reference/turtlebot3.md).
 _NOETIC = (

@@ -220,6 +220,9 @@ class GazeboApi:
 
     # -- topics ----------------------------------------------------------------------------------------------
 
+    def states_heard(self) -> bool:
+        return bool(self.model_states.get_num_connections() or self.link_states.get_num_connections())
+
     def publish_states(self) -> None:
         """``/gazebo/model_states`` and ``/gazebo/link_states``, when anyone listens."""
         if self.model_states.get_num_connections():

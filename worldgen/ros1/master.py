@@ -12,6 +12,7 @@ import socket
 import time
 import xmlrpc.client
 from pathlib import Path
+from typing import Callable
 
 from ..core.errors import InputError
 from ..bridge.supervise import Child, Supervisor
@@ -65,10 +66,11 @@ def rosmaster_command() -> str:
     return found
 
 
-def start_master(supervisor: Supervisor, port: int | None, env: dict[str, str], log: Path | None = None
-                 ) -> tuple[Child, str]:
+def start_master(supervisor: Supervisor, port: int | None, env: dict[str, str], log: Path | None = None,
+                 meanwhile: Callable[[str], None] | None = None) -> tuple[Child, str]:
     """``rosmaster --core -p PORT`` (a free port when None) under ``supervisor``, waited for until it answers;
-    returns the child and its URI. InputError when the port is taken or the master does not come up."""
+    returns the child and its URI. InputError when the port is taken or the master does not come up.
+    ``meanwhile(uri)`` is called once the master is started, before waiting for it (what can start beside it)."""
     command = rosmaster_command()
     if port is None:
         port = free_port()
@@ -78,6 +80,8 @@ def start_master(supervisor: Supervisor, port: int | None, env: dict[str, str], 
     uri = f"http://127.0.0.1:{port}"
     child = supervisor.start("rosmaster", [command, "--core", "-p", str(port)], dict(env, ROS_MASTER_URI=uri),
                              log=log, last=True)
+    if meanwhile is not None:
+        meanwhile(uri)
     deadline = time.monotonic() + START_TIMEOUT
     while time.monotonic() < deadline:
         if not child.running:
@@ -89,7 +93,7 @@ def start_master(supervisor: Supervisor, port: int | None, env: dict[str, str], 
                 raise InputError(f"rosmaster could not start on port {port}: another master answers there",
                                  hint="set ROS_MASTER_URI to a free port")
             return child, uri
-        time.sleep(0.05)
+        time.sleep(0.01)
     supervisor.stop(child)
     raise InputError(f"rosmaster did not answer on port {port} within {START_TIMEOUT:g} s")
 

@@ -21,6 +21,12 @@ def message_class(name: str):
     return getattr(module, msg)
 
 
+def ros_time(rospy, seconds: float):
+    """``rospy.Time`` of simulated ``seconds``, to the nearest nanosecond (``Time.from_sec`` truncates: 1.2 s would
+    be 1.199999999 s, short of a ``rospy.Rate`` deadline at 1.2 s, which then waits for the next clock)."""
+    return rospy.Time(0, round(seconds * 1e9))
+
+
 def fill(msg, values: dict, rospy):
     """Set ``values`` on the rospy message ``msg`` (nested messages filled in place; lists of dicts become lists
     of the field's element type); returns ``msg``."""
@@ -32,7 +38,7 @@ def fill(msg, values: dict, rospy):
         if isinstance(value, dict):
             fill(getattr(msg, name), value, rospy)
         elif name in TIMES:
-            setattr(msg, name, rospy.Time.from_sec(value))
+            setattr(msg, name, ros_time(rospy, value))
         elif isinstance(value, list) and value and isinstance(value[0], dict):
             element = message_class(slots[name].rstrip("[]"))
             setattr(msg, name, [fill(element(), v, rospy) for v in value])

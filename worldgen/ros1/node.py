@@ -4,7 +4,8 @@ the TurtleBot3 plugins (``../shared/reference/turtlebot3.md`` §6 and §11).
 ================  ===========================  =============================================================
 topic             type                         what, when (simulated time)
 ================  ===========================  =============================================================
-``/clock``        rosgraph_msgs/Clock          every other physics step (120 Hz; see below)
+``/clock``        rosgraph_msgs/Clock          every other physics step (120 Hz); at ``--rate max`` as often as
+                                               a node can tell (:mod:`worldgen.interface.loop`)
 ``/scan``         sensor_msgs/LaserScan        5 Hz, frame ``base_scan``, 360 beams 0…6.28319, 0.12–3.5 m
 ``/odom``         nav_msgs/Odometry            30 Hz (the diff-drive plugin's updateRate), ``odom`` →
                                                ``base_footprint``, ground truth (odometrySource world)
@@ -41,6 +42,7 @@ import os
 import sys
 import threading
 import time
+import warnings
 from pathlib import Path
 
 from ..bridge.world import model_name
@@ -48,7 +50,7 @@ from ..core.errors import WorldgenError
 from ..core.scene import Scene
 from ..interface.camera import CameraIO
 from ..interface.loop import Wire, run_loop
-from ..interface.signals import deliver_interrupts, ignore_interrupts
+from ..interface.signals import deliver_interrupts, ignore_interrupts, pending_interrupt
 from ..interface.robot import RobotIO
 from ..interface.topics import join, topics as stack_topics
 from ..robots import robot_urdf
@@ -56,7 +58,7 @@ from ..robots.profile import robot_profile
 from ..sim.session import Session
 from .camera_topics import CameraTopics
 from .gazebo_api import GazeboApi
-from .messages import fill, message_class
+from .messages import fill, message_class, ros_time
 from .robot_topics import RobotTopics
 from .rosenv import import_rospy
 
@@ -71,7 +73,11 @@ class Bridge(Wire):
         table = stack_topics("noetic")
         self.pubs = {key: rospy.Publisher(t.name, message_class(t.type), queue_size=t.qos.depth,
                                           latch=t.qos.transient_local)
-                     for key, t in table.items() if not t.per_robot}
+                     for key, t in table.items() if not t.per_robot and key != "clock"}
+        with warnings.catch_warnings():   # rospy warns of a publisher without queue_size: this one is on purpose
+            warnings.simplefilter("ignore")
+            # /clock written from this thread: rospy's queue would wake its writer thread for every 12 bytes
+            self.pubs["clock"] = rospy.Publisher(table["clock"].name, message_class(table["clock"].type))
         self.lock = threading.Lock()
         self.paused = False
         self.bag = None
@@ -169,7 +175,7 @@ class Bridge(Wire):
     # -- messages (the step loop's Wire) ---------------------------------------------------------------------
 
     def stamp(self):
-        return self.rospy.Time.from_sec(self.session.t)
+        return ros_time(self.rospy, self.session.t)
 
     def shut_down(self) -> bool:
         return self.rospy.is_shutdown()
@@ -198,6 +204,10 @@ class Bridge(Wire):
             topics.publish_drive(t, self.pubs["tf"])
         if self.person is not None:
             self.trace["person"].append([t, *self.person_xy(t)])
+
+    def fast_heard(self) -> bool:
+        """Whether some node listens to a robot's IMU or Gazebo's model or link states."""
+        return any(topics.pubs["imu"].get_num_connections() for topics in self.robots) or self.api.states_heard()
 
     def publish_fast(self, dt: float) -> None:
         """What goes out every other step: each robot's /imu, Gazebo's model and link states."""
@@ -251,12 +261,34 @@ def wait_for_start(rospy, bridge: Bridge, param: str) -> None:
     """Hold simulated time at 0 (publishing /clock) until ``param`` is true on the master: the nodes under
     test are up, as with Gazebo started paused and then unpaused."""
     deadline = time.monotonic() + START_WAIT
+    clock_at = 0.0
     while time.monotonic() < deadline and not rospy.is_shutdown():
-        bridge.publish_clock()
+        if time.monotonic() >= clock_at:
+            bridge.publish_clock()
+            clock_at = time.monotonic() + 0.02
         bridge.drain()
         if rospy.get_param(param, False):
             return
-        time.sleep(0.02)
+        time.sleep(0.005)
+
+
+def wait_for_master(param: str, token: str) -> bool:
+    """Until the master (``ROS_MASTER_URI``) holds ``token`` in ``param``: it is up and the run's parameters are
+    set (the simulator starts beside the master, see :mod:`.run`). False when a stop signal comes first (held
+    while starting, see :mod:`worldgen.interface.signals`) or after :data:`START_WAIT`."""
+    import xmlrpc.client
+
+    master = xmlrpc.client.ServerProxy(os.environ.get("ROS_MASTER_URI", ""))
+    deadline = time.monotonic() + START_WAIT
+    while time.monotonic() < deadline and not pending_interrupt():
+        try:
+            code, _, value = master.getParam("/gazebo", param)
+            if code == 1 and value == token:
+                return True
+        except (OSError, xmlrpc.client.Error):
+            pass
+        time.sleep(0.01)
+    return False
 
 
 def _write_json(path: str, data: dict) -> None:
@@ -270,7 +302,8 @@ def main(argv: list[str]) -> int:
     """``CONFIG.json`` holds: scene_file (a pickled Scene), robot, spawn [x, y, yaw], robots (null, or one entry
     per robot: name, ns, robot, spawn, tf_prefix, mappings; the first is robot/spawn's), graded (the namespace or
     name of the robot the trace is about), no_hit, rate (0 = max), duration (s or null), trace (file or null), bag
-    (file or null), start_param (null: start at once), person (null or the loop), set_sim_time (bool),
+    (file or null), start_param (null: start at once), up_param (null, or [parameter, token]: join the master
+    once it holds the token, see :func:`wait_for_master`), person (null or the loop), set_sim_time (bool),
     gazebo_msgs (a folder to import gazebo_msgs from, or null), record_scans (bool: every robot's trace gets
     ``lidar`` and every published scan under ``ranges``, see :meth:`.RobotTopics.publish_scan`)."""
     keep_freed_memory()
@@ -291,7 +324,11 @@ def main(argv: list[str]) -> int:
         print(f"worldgen: error: {err}", file=sys.stderr, flush=True)
         return 2
     with session:
-        rospy.init_node("gazebo", disable_signals=True, anonymous=False)
+        if config.get("up_param") and not wait_for_master(*config["up_param"]):
+            return 0   # stopped, or no master, before the run began: nothing to write
+        # Its own messages carry the session's time: it needs no /clock of its own (a second connection on
+        # every /clock message, and a thread reading them).
+        rospy.init_node("gazebo", disable_signals=True, anonymous=False, disable_rostime=True)
         if config.get("set_sim_time", True):
             rospy.set_param("/use_sim_time", True)
         try:
@@ -343,13 +380,14 @@ def keep_freed_memory() -> None:
 
 
 def finish(rospy, bridge: Bridge, config: dict, timing: dict) -> None:
-    """Write the trace and close the bag (under the lock the callbacks take), then leave the master."""
+    """Close the bag, then write the trace (under the lock the callbacks take), then leave the master. The trace
+    comes last: once it is there the run's result is whole, and ``worldgen run`` ends every process at once."""
     with bridge.lock:
-        if config.get("trace"):
-            _write_json(config["trace"], dict(bridge.result(), timing=timing))
         if bridge.bag is not None:
             bridge.bag.close()
             bridge.bag = None
             for topics in bridge.robots:
                 topics.bag = None
+        if config.get("trace"):
+            _write_json(config["trace"], dict(bridge.result(), timing=timing))
     rospy.signal_shutdown("worldgen sim done")

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from ..interface.robot import RobotIO
 from ..interface.topics import join, topics
-from .messages import fill, message_class
+from .messages import fill, message_class, ros_time
 
 STACK = "noetic"
 
@@ -44,7 +44,7 @@ class RobotTopics:
         if self.bag is not None:
             with self.io.lock:
                 if self.bag is not None:
-                    self.bag.write(join(self.ns, "cmd_vel"), msg, self.rospy.Time.from_sec(self.io.now))
+                    self.bag.write(join(self.ns, "cmd_vel"), msg, ros_time(self.rospy, self.io.now))
 
     def _send(self, key: str, values: dict) -> None:
         msg = fill(self.pubs[key].data_class(), values, self.rospy)

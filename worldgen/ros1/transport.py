@@ -15,7 +15,7 @@ from ..bridge.world import World
 from ..core.errors import WorldgenError
 from ..runtime.naming import Naming
 from .nodes import resolve_nodes
-from .rosenv import ENV_PYTHON, SYSTEM_PYTHON, distro_package, import_rospy, node_python
+from .rosenv import ENV_PYTHON, SYSTEM_PYTHON, distro_package, find_rospy, node_python
 from .run import run_nodes
 
 
@@ -25,7 +25,7 @@ class Ros1(Transport):
     retry = ("rosmaster could not start",)
 
     def node_python(self) -> str:
-        import_rospy()   # InputError naming the package when rospy is missing
+        find_rospy()   # InputError naming the package when rospy is missing
         return node_python()
 
     def naming(self) -> Naming:

@@ -8,11 +8,11 @@ from __future__ import annotations
 import functools
 import os
 import shutil
-import subprocess
 import sys
 from pathlib import Path
 
 from ..core.errors import InputError
+from ..runtime.interpreters import imports
 
 ENV_PYTHON = "WORLDGEN_ROS2_PYTHON"
 PEER_VENV = Path(__file__).resolve().parents[2] / ".venv-ros2"
@@ -26,10 +26,9 @@ def install_hint(stack: str) -> str:
 
 @functools.lru_cache(maxsize=None)
 def imports_rclpy(python: str) -> bool:
-    try:
-        return subprocess.run([python, "-c", "import rclpy"], capture_output=True, timeout=60).returncode == 0
-    except (OSError, subprocess.SubprocessError):
-        return False
+    """Asked once a process, and kept on disk while the interpreter and rclpy stay (:mod:`worldgen.runtime.
+    interpreters`)."""
+    return imports(python, "rclpy", timeout=60)
 
 
 def candidates() -> list[tuple[str, str]]:

@@ -4,9 +4,10 @@ students' rclpy nodes, the duration, then everything stopped and what the robot 
 Order: a domain id no other run of this machine holds (a lock file per id, so ``-j`` runs and other users' runs
 never cross); the simulator and the nodes started together (the nodes with ``ROS_DOMAIN_ID`` and discovery kept on
 localhost, as the simulator's participant is); simulated time held at 0 until every node's participant has come and
-some endpoint of theirs matches the robot's (or a node has exited, or 15 s have passed), as Gazebo started paused
-and then unpaused would be; the run ends after ``duration`` simulated seconds. Every process is in a group of its
-own, stopped on any exit (:mod:`worldgen.bridge.supervise`)."""
+its endpoints match the robot's as the task needs (see :func:`.node.wait_for_start`; or a node has exited, or 15 s
+have passed), as Gazebo started paused and then unpaused would be; the run ends after ``duration`` simulated
+seconds. Every process is in a group of its own, stopped on any exit, and ended at once when the simulator has
+written its result (:mod:`worldgen.bridge.supervise`, :func:`worldgen.bridge.outcome.finish_run`)."""
 
 from __future__ import annotations
 
@@ -85,7 +86,7 @@ def run_nodes(world: World, nodes: list[NodeSpec], options: RunOptions, stack: s
                               trace=str(trace_file), start_file=str(start_file), person=options.person,
                               graded=options.robot_ns, record_scans=options.record_scans, stack=stack, domain=domain,
                               discovery={"range": "localhost", "peers": []}, expect=len(nodes), cmd_vel=cmd_vel,
-                              pids_file=str(tmp / "pids.json"))
+                              pids_file=str(tmp / "pids.json"), task=options.task)
         simulator = supervisor.start("simulator", [sys.executable, "-m", "worldgen.ros2", str(config)],
                                      _simulator_env(env), log=tmp / "simulator.log")
         children = [supervisor.start(n.name, n.argv, dict(env, **n.env), log=tmp / f"node_{i}.log")
@@ -109,4 +110,4 @@ def _wait_for_start(simulator: Child, children: list[Child], start_file: Path) -
             raise WorldgenError(f"the simulator did not come up within {SIM_START_TIMEOUT:g} s")
         if waited > UP_TIMEOUT or any(not c.running for c in children):
             start_file.touch()
-        time.sleep(0.02)
+        time.sleep(0.01)

@@ -1,0 +1,164 @@
+"""Speed of ``worldgen run`` against the floor measured in the same run (issue 26): one submission, a class's
+folder, and where a run's time goes.
+
+The floor is a Python start that imports what the simulator cannot do without: ``python -c 'import pybullet,
+numpy, lxml.etree'`` (as bench_speed.py's). Each round runs, in an order that rotates from round to round so that a
+busy machine slows all alike:
+
+* the floor;
+* ``worldgen run examples/enclosed_room.yaml stop_at_wall.py --task stop-at-wall --rate max`` — the course's node
+  (``worldgen course``), 20 simulated seconds;
+* with ``--grading``: a folder of 8 submissions (that node, each in a folder of its own) graded with ``-j 1`` and
+  with ``-j 2``.
+
+Printed: the medians of wall time, each also as a multiple of the floor's, against the targets (1.5 s for the run
+and 6 s for 8 submissions at ``-j 2``, on a machine whose floor is 0.084 s: 18 and 71 floors). Then the phases of
+one run, timed in this process on the same node (the median of ``--rounds`` runs each): what happens before the
+run (the node's Python, the world, the preflight), the master and the simulator starting together, the node
+starting until it is ready, the simulated seconds, and the ending; and the rest of a command's wall time (Python's
+start, imports, exit).
+
+    .venv/bin/python benchmarks/bench_run.py [--rounds N] [--grading]
+"""
+
+from __future__ import annotations
+
+import argparse
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(REPO))
+ROOM = REPO / "examples" / "enclosed_room.yaml"
+FLOOR = [sys.executable, "-c", "import pybullet, numpy, lxml.etree"]
+FLOOR_THEN = 0.084   # s: the floor on the machine the targets were set on
+TARGETS = {"run": 1.5, "grade -j 2": 6.0}
+SUBMISSIONS = 8
+
+
+def timed(cmd: list[str]) -> float:
+    t0 = time.perf_counter()
+    proc = subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, cwd=REPO)
+    wall = time.perf_counter() - t0
+    if proc.returncode not in (0, 1):
+        raise SystemExit(f"{' '.join(cmd)} failed ({proc.returncode}): {proc.stderr.decode()[-2000:]}")
+    return wall
+
+
+def course_node(tmp: Path) -> Path:
+    from worldgen.packages.course_ros1 import write_course
+
+    course = write_course(tmp / "course")
+    return course / "lab_a_stop_at_wall" / "scripts" / "stop_at_wall.py"
+
+
+def class_folder(tmp: Path, node: Path) -> Path:
+    """A folder of :data:`SUBMISSIONS` submissions, each a folder holding the node."""
+    folder = tmp / "submissions"
+    for i in range(SUBMISSIONS):
+        (folder / f"student_{i}").mkdir(parents=True)
+        shutil.copy(node, folder / f"student_{i}" / "stop_at_wall.py")
+    return folder
+
+
+def measure(commands: dict[str, list[str]], rounds: int) -> dict[str, list[float]]:
+    names = list(commands)
+    times: dict[str, list[float]] = {n: [] for n in names}
+    for r in range(rounds):
+        for name in names[r % len(names):] + names[:r % len(names)]:
+            times[name].append(timed(commands[name]))
+    return times
+
+
+def phases(node: Path, rounds: int) -> dict[str, float]:
+    """Median seconds of each phase of an in-process run (see the module docstring)."""
+    import worldgen.bridge.outcome as outcome
+    import worldgen.bridge.supervise as supervise
+    import worldgen.ros1.run as run
+    import worldgen.ros1.transport as transport
+    from worldgen.bridge.outcome import Outputs, RunRequest
+    from worldgen.bridge.single import run_single
+    from worldgen.cli.transports import transport_for
+
+    marks: list[tuple[str, float]] = []
+
+    def wrap(owner, name: str, label: str) -> None:
+        original = getattr(owner, name)
+
+        def timed_call(*args, **kwargs):
+            try:
+                return original(*args, **kwargs)
+            finally:
+                marks.append((label, time.perf_counter()))
+        setattr(owner, name, timed_call)
+
+    wrap(transport.Ros1, "node_python", "the node's Python")
+    wrap(run, "find_rospy", "the world, the node, its preflight")
+    wrap(run, "start_master", "the master and the simulator starting")
+    wrap(run, "_wait_for_simulator", "the simulator joining")
+    wrap(run, "wait_until_ready", "the node starting until ready")
+    wrap(outcome, "wait_for_end", "the simulated seconds")
+    wrap(supervise.Supervisor, "__exit__", "the ending")
+    ros = transport_for("noetic")
+    found: dict[str, list[float]] = {}
+    for _ in range(rounds):
+        marks.clear()
+        start = time.perf_counter()
+        run_single(ROOM, [str(node)], RunRequest(task="stop-at-wall", rate=0.0), Outputs(), ros)
+        end = time.perf_counter()
+        previous = start
+        for label, at in marks:
+            found.setdefault(label, []).append(at - previous)
+            previous = at
+        found.setdefault("the report", []).append(end - previous)
+        found.setdefault("in all", []).append(end - start)
+    return {label: statistics.median(values) for label, values in found.items()}
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--rounds", type=int, default=5)
+    parser.add_argument("--grading", action="store_true", help="also grade a folder of 8 submissions at -j 1, -j 2")
+    args = parser.parse_args()
+    worldgen = [sys.executable, "-m", "worldgen", "run"]
+    with tempfile.TemporaryDirectory(prefix="bench_run_") as tmp_name:
+        tmp = Path(tmp_name)
+        node = course_node(tmp)
+        commands = {"floor": FLOOR,
+                    "run": worldgen + [str(ROOM), str(node), "--task", "stop-at-wall", "--rate", "max"]}
+        if args.grading:
+            folder = class_folder(tmp, node)
+            for jobs in (1, 2):
+                commands[f"grade -j {jobs}"] = worldgen + [str(folder), "--task", "stop-at-wall", "--rate", "max",
+                                                           "-j", str(jobs)]
+        timed(commands["run"])   # warm: the node's Python learnt, the robot's description kept
+        times = measure(commands, args.rounds)
+        floor = statistics.median(times["floor"])
+        print(f"floor (python -c 'import pybullet, numpy, lxml.etree'): {floor:.3f} s, median of {args.rounds}")
+        for name, values in times.items():
+            if name == "floor":
+                continue
+            median = statistics.median(values)
+            line = f"{name:<12} {median:6.2f} s  = {median / floor:5.1f} floors  (min {min(values):.2f} s)"
+            if name in TARGETS:
+                allowed = TARGETS[name] / FLOOR_THEN
+                line += (f"; target {TARGETS[name]:g} s = {allowed:.0f} floors: "
+                         f"{'met' if median / floor <= allowed else 'NOT met'}")
+            print(line)
+        spent = phases(node, args.rounds)
+        print(f"\nphases of one run (in this process, median of {args.rounds}):")
+        for label, seconds in spent.items():
+            if label != "in all":
+                print(f"  {label:<40} {seconds:6.3f} s")
+        print(f"  {'in all':<40} {spent['in all']:6.3f} s")
+        rest = statistics.median(times["run"]) - spent["in all"]
+        print(f"  {'and in a command: start, imports, exit':<40} {rest:6.3f} s")
+
+
+if __name__ == "__main__":
+    main()
