@@ -115,10 +115,12 @@ def test_the_folder_is_graded_per_package_with_each_launch_files_spawn(submissio
     assert ben_launch["ok"] is False and ben_launch["spawn"] == [-7.5, 3.3, 0.0]
     [gap] = ben_launch["metrics"]["gaps"]
     assert gap["width"] == pytest.approx(4.0, abs=0.2) and math.dist(gap["centre"], (-10, 3)) < 0.2
-    # Cara: the metapackage needs no launch file; the world package and its launch row fail on the missing world
+    # Cara: the metapackage needs no launch file; the launch row fails on the missing world, said there once
     meta, world_pkg, world_launch = rows(doc, "cara")
     assert meta["ok"] is True and meta["checks"] == ["package"]
-    assert world_pkg["ok"] is False and any("does not exist" in f["message"] for f in world_pkg["findings"])
+    assert world_pkg["ok"] is True and world_pkg["findings"] == []
+    [said] = [f for f in world_launch["findings"] if "cara_room.world" in f["message"]]
+    assert said["severity"] == "error" and said["message"].endswith("cara_room.world does not exist")
     assert world_launch["ok"] is False and world_launch["skipped"]["enclosed"] == "no world to read"
     # progress: one line per finished file on stderr, never on stdout
     assert sum(line.startswith("[") for line in proc.stderr.splitlines()) == 7
@@ -128,7 +130,8 @@ def test_the_junit_report_gives_each_submission_its_verdict(graded):
     _, doc, junit = graded
     failing = {c.get("classname") for c in junit.iter("testcase") if c.find("failure") is not None}
     assert failing == {r["path"] for r in doc["results"] if not r["ok"]}
-    assert len(failing) == 3 and all("/ben/ben_world/launch/" in p or "/cara/cara_world" in p for p in failing)
+    assert len(failing) == 2 and all("/ben/ben_world/launch/" in p or "/cara/cara_world/launch/" in p
+                                     for p in failing)
     classes = {c.get("classname") for c in junit.iter("testcase")}
     assert classes == {r["path"] for r in doc["results"]}
 
@@ -269,7 +272,7 @@ def test_the_readme_grading_command_runs_as_written(submissions):
     assert proc.returncode == 1 and "Traceback" not in proc.stderr   # Ben's and Cara's submissions fail
     cases = etree.parse(str(submissions.parent / "report.xml")).getroot().iter("testcase")
     assert {c.get("classname") for c in cases if c.find("failure") is not None} == {
-        "submissions/ben/ben_world/launch/turtlebot3_in_ben_room.launch", "submissions/cara/cara_world",
+        "submissions/ben/ben_world/launch/turtlebot3_in_ben_room.launch",
         "submissions/cara/cara_world/launch/turtlebot3_in_cara_room.launch"}
 
 

@@ -7,7 +7,8 @@ the command line, or its only Python file. Every node's imports are looked up fi
 go (:mod:`.preflight`); a submission whose node imports a module that is not installed is not started, its result
 holding a ``runtime`` finding per missing module. Every other submission runs in its own master on its own port,
 ``jobs`` at once, and gets one :class:`~worldgen.check.report.Result`; a submission that cannot run is an error
-finding, never the end of the grading.
+finding, never the end of the grading. A package the others depend on that holds no node for the task (the
+course's world package handed in beside the labs) is no submission: it is left out (:func:`depended_packages`).
 """
 
 from __future__ import annotations
@@ -15,11 +16,12 @@ from __future__ import annotations
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
+from ..check.discover import depended_on
 from ..check.discover import shard as take_shard
 from ..check.report import Result
 from ..core.errors import InputError, WorldgenError
 from ..core.findings import Finding
-from ..core.packages import crawl
+from ..core.packages import MANIFEST, crawl, manifest_name
 from ..core.resources import examples_dir
 from .outcome import RunRequest
 from .preflight import blocked_result, many_findings
@@ -41,6 +43,22 @@ def submissions(folder: Path) -> list[Path]:
     if not found:
         found = [p for p in folder.iterdir() if p.is_dir() and not p.name.startswith(".")]
     return sorted(found)
+
+
+def depended_packages(found: list[Path], task: str | None, names=()) -> list[Path]:
+    """The packages of a graded folder that are no submission: each one that another package there depends on
+    (package.xml) and that holds no node for the task — the course's world package handed in beside the labs
+    (their launch files start its world), a student's own world or message package."""
+    needed = depended_on(found)
+    return [p for p in found if (manifest_name(p / MANIFEST) or p.name) in needed and not _has_node(p, task, names)]
+
+
+def _has_node(submission: Path, task: str | None, names) -> bool:
+    try:
+        node_of(submission, task, list(names))
+    except InputError:
+        return False
+    return True
 
 
 def node_of(submission: Path, task: str | None, names: list[str]) -> Path:
@@ -69,6 +87,7 @@ def grade_folder(folder: Path, world_path: Path | None, request: RunRequest, tra
     task = request.task
     task_context(world, task)   # a line-follow world without tape, say: one line before anything starts
     found = submissions(folder)
+    found = [p for p in found if p not in depended_packages(found, task, nodes)]   # cli.run names them
     if not found:
         raise InputError("holds no submissions (no catkin packages, no folders)", path=folder,
                          hint="give the folder holding one folder or package per student")

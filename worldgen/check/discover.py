@@ -9,7 +9,8 @@ goes. Packages — catkin ones and ROS 2's ament ones alike — are found as ros
 built from a spec beside it (same name) is left out, the spec standing for both. Everything comes back sorted by
 path, so the same folder gives the same plan on every machine. The search never leaves the folder: a symlinked
 folder in it that leads out (a submission's link to ``/usr/share`` or ``/``) is not followed, and the folder's
-note names it.
+note names it. A package the folder holds once (:func:`shared_packages`: the course's world package beside the
+submissions) is where every submission's launch files find it.
 
 :func:`shard` takes a stable share of planned items for ``--shard K/N``.
 """
@@ -22,7 +23,7 @@ from pathlib import Path
 from typing import Callable, List, Sequence, Tuple, TypeVar
 
 from ..core.errors import InputError
-from ..core.packages import MANIFEST, build_type, crawl
+from ..core.packages import MANIFEST, build_type, crawl, manifest_name
 
 WORLD_SUFFIXES = (".world", ".sdf")
 SPEC_FILE_SUFFIXES = (".yaml", ".yml", ".json")
@@ -108,6 +109,35 @@ def find_loose(folder: Path, outside: list | None = None) -> list[tuple[str, Pat
             elif lower.endswith(SPEC_FILE_SUFFIXES):
                 found.append(("spec", here / name))
     return sorted(found, key=lambda item: str(item[1]))
+
+
+def shared_packages(packages: Sequence[Path]) -> list[Path]:
+    """The packages of a graded folder that serve all of it: each whose name no other package there holds (the
+    course's world package handed in once beside the students' labs). A launch file's ``$(find PKG)`` looks in
+    them after its own workspace and before ``ROS_PACKAGE_PATH``; a name that several submissions hold (each
+    student's own copy) is never taken from another student's folder."""
+    named = [(manifest_name(Path(p) / MANIFEST) or Path(p).name, Path(p)) for p in packages]
+    counts: dict = {}
+    for name, _ in named:
+        counts[name] = counts.get(name, 0) + 1
+    return [p for name, p in named if counts[name] == 1]
+
+
+DEPEND_TAGS = ("depend", "exec_depend", "run_depend", "build_depend", "build_export_depend")
+
+
+def depended_on(packages: Sequence[Path]) -> set[str]:
+    """The names of the packages that the ``packages`` (metapackages aside: they only group) depend on in their
+    package.xml."""
+    from ..core.safexml import parse_file
+
+    names: set[str] = set()
+    for folder in packages:
+        root = parse_file(Path(folder) / MANIFEST)
+        if root is None or root.find("export/metapackage") is not None:
+            continue
+        names.update((el.text or "").strip() for tag in DEPEND_TAGS for el in root.iterfind(tag))
+    return names
 
 
 def search_folder(folder: str | Path) -> Found:

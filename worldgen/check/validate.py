@@ -27,9 +27,11 @@ from pathlib import Path
 from typing import Callable, Sequence
 
 from .camera_view import check_camera
+from .launch_world import world_not_found
 from .checks import (GEOMETRIC_CHECKS, SDFORMAT_ABSENT, SIM_CHECKS, check_enclosed, check_parse,
                      check_spawn_clear, check_sdformat, floor_under, robot_body)
 from ..core.errors import InputError, SpecError, WorldFileError
+from ..core.packages import ros_package_path
 from ..core.inputs import check_regular
 from ..core.spawnpose import plan_pose
 from ..core.findings import Finding
@@ -178,8 +180,10 @@ def _plan_path(path: Path, display: str, options: Options, launch_info, notes) -
 
 
 def _folder_jobs(folder: Path, options: Options, launch_info, notes) -> list[Job]:
-    """A folder that is no package: each package found in it, else each world, model folder and spec."""
-    from .discover import search_folder
+    """A folder that is no package: each package found in it, else each world, model folder and spec. A package
+    the folder holds once serves all of it (:func:`.discover.shared_packages`: the course's world package handed in
+    beside the submissions): its launch files' ``$(find)`` look there before ``ROS_PACKAGE_PATH``."""
+    from .discover import search_folder, shared_packages
 
     found = search_folder(folder)
     if notes is not None:
@@ -188,25 +192,33 @@ def _folder_jobs(folder: Path, options: Options, launch_info, notes) -> list[Job
         raise InputError("holds no catkin package, world file or spec", path=folder,
                          hint="give a workspace, its src/, a folder of packages, or world/spec files")
     jobs: list[Job] = []
+    shared = tuple(shared_packages(found.packages))
     for pkg in found.packages:
-        jobs += _package_jobs(pkg, options)
+        jobs += _package_jobs(pkg, options, shared)
     for kind, path in found.files:
         jobs += _plan_path(path, str(path), options, launch_info, None)
     return jobs
 
 
-def _read_launch(path: Path):
+def _read_launch(path: Path, shared: tuple[Path, ...] | None = None):
     from ..launch.reader import read_launch
 
-    return read_launch(path)
+    return read_launch(path, ros_package_path=_search_path(shared))
 
 
-def _package_jobs(folder: Path, options: Options) -> list[Job]:
-    """A package gives a row of its own (the package check) and one job per launch file."""
+def _search_path(shared: tuple[Path, ...] | None) -> list[Path] | None:
+    """Where ``$(find)`` looks after a launch file's own workspace: a graded folder's ``shared`` packages, then
+    ``ROS_PACKAGE_PATH`` (None: no folder graded, the process's ROS_PACKAGE_PATH only)."""
+    return None if shared is None else [*shared, *ros_package_path()]
+
+
+def _package_jobs(folder: Path, options: Options, shared: tuple[Path, ...] | None = None) -> list[Job]:
+    """A package gives a row of its own (the package check) and one job per launch file (whose read is said on
+    its row, not the package's); ``shared``: the packages of the folder graded that serve all of it."""
     from ..packages.check import package_launch_files
     from .discover import is_metapackage
 
-    findings = _package_findings(folder)
+    findings = _package_findings(folder, shared)
     launches = package_launch_files(folder)
     if not launches and not is_metapackage(folder):
         findings.append(Finding("package", "error", "the package has no launch files",
@@ -214,31 +226,31 @@ def _package_jobs(folder: Path, options: Options) -> list[Job]:
                                                        "(worldgen launch WORLD --package PKG writes one)"))
     jobs = [Job(path=str(folder), pre_checks=["package"], findings=findings, package_only=True)]
     for launch in launches:
-        jobs.append(_apply_options(_launch_path_job(launch, str(launch)), options))
+        jobs.append(_apply_options(_launch_path_job(launch, str(launch), shared), options))
     return jobs
 
 
-def _package_findings(folder: Path) -> list[Finding]:
+def _package_findings(folder: Path, shared: tuple[Path, ...] | None = None) -> list[Finding]:
     """:func:`worldgen.packages.check.check_package`, its ids put under ``package-`` (``cmake`` →
-    ``package-cmake``)."""
+    ``package-cmake``), less what its launch files' rows say."""
     from ..packages.check import check_package
 
     return [f if f.check.startswith("package") else dc_replace(f, check=f"package-{f.check}")
-            for f in check_package(folder)]
+            for f in check_package(folder, ros_package_path=_search_path(shared), launch_rows=True)]
 
 
-def _launch_path_job(path: Path, display: str) -> Job:
+def _launch_path_job(path: Path, display: str, shared: tuple[Path, ...] | None = None) -> Job:
     """The job of a launch file given as an input: one that roslaunch could not parse either is a failed
-    ``launch`` check, not bad input."""
+    ``launch`` check, not bad input. ``shared``: see :func:`_package_jobs`."""
     try:
-        info = _read_launch(path)
+        info = _read_launch(path, shared)
     except WorldFileError as err:
         return Job(path=display, pre_checks=["launch"], findings=[
             _error_finding("launch", err, path, "fix the launch file so that roslaunch can read it")])
-    return _launch_job(path, info, display)
+    return _launch_job(path, info, display, graded=shared is not None)
 
 
-def _launch_job(path: Path, info, display: str) -> Job:
+def _launch_job(path: Path, info, display: str, graded: bool = False) -> Job:
     from ..launch.reader import nothing_to_simulate
 
     job = Job(path=display, pre_checks=["launch"], findings=list(info.findings))
@@ -249,13 +261,8 @@ def _launch_job(path: Path, info, display: str) -> Job:
         return job
     if info.world_path is not None and Path(info.world_path).is_file():
         job.world = Path(info.world_path)
-    else:
-        ref = info.world_ref or "(none)"
-        job.findings.append(Finding(
-            "launch", "error", f"the world this launch file starts cannot be found: {ref}",
-            where=str(path), fix="make the world it passes to Gazebo (world_name; world or gz_args in a launch.py) "
-                                 "an existing world file (is the package on ROS_PACKAGE_PATH or in this "
-                                 "workspace?), or validate the world itself with --launch THIS_FILE"))
+    else:   # one error, the missing package's findings folded into it
+        job.findings = world_not_found(info, path, job.findings, graded)
     _take_launch_pose(job, info, path)
     return job
 

@@ -95,8 +95,11 @@ def run(world, nodes, task, target, duration, rate, spawn, launch_file, robot, r
         _across_worlds(worlds_source, world, nodes, request, transport, jobs, shard_k_n, min_pass, fmt, junit, flags,
                        given)
     if world.is_dir() and not (world / "model.sdf").is_file() and not (world / "model.config").is_file():
-        from ..bridge.grade import grade_folder
+        from ..bridge.grade import depended_packages, grade_folder, submissions
 
+        for shared in depended_packages(submissions(world), task, nodes):
+            click.echo(f"worldgen: {shared}: not graded: packages in the folder depend on it and it holds no node "
+                       f"for the task", err=True)
         pages: dict = {}
         each = None
         if html is not None:

@@ -40,13 +40,15 @@ def package_launch_files(pkg_dir: str | Path) -> list[Path]:
 
 
 def check_package(pkg_dir: str | Path, *, ros_package_path: Sequence[str | Path] | None = None,
-                  environ: Mapping[str, str] | None = None) -> list[Finding]:
+                  environ: Mapping[str, str] | None = None, launch_rows: bool = False) -> list[Finding]:
     """What would break in the catkin or ament package at ``pkg_dir``: package.xml that catkin_pkg cannot parse
     (or a name catkin rejects), a catkin CMakeLists.txt without ``project(NAME)``/``catkin_package()`` or not
     installing its launch/worlds/models folders (an ament package's build files: :mod:`.check_ament`), scripts
     without their executable bit, launch files that do not parse, name a world file that does not exist, an
     unknown robot model or a node the package does not have, and missing exec_depends on the packages the launch
-    files use."""
+    files use. With ``launch_rows`` the caller reports each launch file's read on a row of its own (``worldgen
+    validate``): what that row says — the read's findings, a file that does not parse, a world that is not
+    there — is left out here, so that one cause is said once."""
     pkg_dir = Path(pkg_dir)
     findings: list[Finding] = []
 
@@ -81,7 +83,7 @@ def check_package(pkg_dir: str | Path, *, ros_package_path: Sequence[str | Path]
                 add("script-executable", "error", "Python script has no #! line", script,
                     "start it with #!/usr/bin/env python3")
     used: set[str] = set()
-    package = _Package(name, pkg_dir, kind, executables)
+    package = _Package(name, pkg_dir, kind, executables, launch_rows)
     for launch in package_launch_files(pkg_dir):
         _check_launch(launch, package, used, add, ros_package_path, environ)
     if depends is not None:
@@ -136,6 +138,7 @@ class _Package:
     folder: Path
     kind: str = "catkin"
     executables: Optional[Set[str]] = None
+    launch_rows: bool = False   # each launch file's read is reported on its own row: not repeated here
 
 
 def _check_launch(launch: Path, package: _Package, used: set[str], add, ros_package_path, environ) -> None:
@@ -143,17 +146,14 @@ def _check_launch(launch: Path, package: _Package, used: set[str], add, ros_pack
     try:
         info = read_launch(launch, ros_package_path=ros_package_path, environ=environ or {})
     except WorldFileError as err:
-        add("launch-parse", "error", err.message, f"{err.path}:{err.line}" if err.line else err.path, err.hint)
+        if not package.launch_rows:
+            add("launch-parse", "error", err.message, f"{err.path}:{err.line}" if err.line else err.path, err.hint)
         return
-    for finding in info.findings:
+    for finding in () if package.launch_rows else info.findings:
         if finding.severity in ("error", "warning"):
             add(finding.check, finding.severity, finding.message, finding.where, finding.fix)
-    if info.world_path is not None and not info.world_path.is_file():
-        add("launch-world", "error", f"the world file {info.world_path} does not exist", launch,
-            "build it (worldgen build SPEC --package DIR) or fix the world's path")
-    elif info.world_path is None and info.package == name and info.world_ref:
-        add("launch-world", "error", f"the world {info.world_ref} cannot be resolved", launch,
-            "fix the world's path")
+    if not package.launch_rows:
+        _check_world(info, launch, name, add)
     known = set(ROBOT_MODELS)
     models = {r.robot for r in info.robots if r.robot} | ({info.model} if info.model else set())
     for model in sorted(models - known):
@@ -178,6 +178,16 @@ def _check_launch(launch: Path, package: _Package, used: set[str], add, ros_pack
     used.update(re.findall(r"\$\(find\s+([^)\s]+)\)", text))
     used.update(re.findall(r"\b(?:get_package_share_directory|FindPackageShare)\(\s*(?:package\s*=\s*)?"
                            r"['\"]([A-Za-z0-9_]+)['\"]", text))
+
+
+def _check_world(info, launch: Path, name: str, add) -> None:
+    """A launch file's world: a file that is not there, or a world in its own package that does not resolve."""
+    if info.world_path is not None and not info.world_path.is_file():
+        add("launch-world", "error", f"the world file {info.world_path} does not exist", launch,
+            "build it (worldgen build SPEC --package DIR) or fix the world's path")
+    elif info.world_path is None and info.package == name and info.world_ref:
+        add("launch-world", "error", f"the world {info.world_ref} cannot be resolved", launch,
+            "fix the world's path")
 
 
 def _head(path: Path) -> bytes:

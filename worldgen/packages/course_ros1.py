@@ -27,10 +27,8 @@ from ..core.numbers import format_number
 from ..core.resources import examples_dir, render_template
 from .catkin import PackageArgs, PackageFiles, PackageRequest, package_files, package_request, world_from_spec
 from ..core.fsio import write_tree
+from .course_names import LINE_PACKAGE, REPOSITORY, WORLD_PACKAGE
 
-REPOSITORY = "intro_robo"
-WORLD_PACKAGE = "class_meeting_02_custom_gazebo_world"
-LINE_PACKAGE = "lab_b_line_follower"
 DEPENDENCIES = ("rospy", "std_msgs", "geometry_msgs", "sensor_msgs")
 VERSION = "0.1.0"
 LICENSE = "BSD"

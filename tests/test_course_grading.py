@@ -1,0 +1,105 @@
+"""A teaching assistant grades the course's own lab package, handed in unchanged by two students: its launch file
+starts the world of another course package (``class_meeting_02_custom_gazebo_world``). That package is found
+beside the submissions in the folder graded, or on ROS_PACKAGE_PATH; when it is nowhere, one finding per submission
+says what to add (not the same cause three times: the package row, the launch row and the read of the file)."""
+
+from __future__ import annotations
+
+import json
+import shutil
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+from worldgen.bridge.grade import depended_packages, submissions
+from worldgen.cli import main
+
+WORLD_PACKAGE = "class_meeting_02_custom_gazebo_world"
+LAB = "lab_a_stop_at_wall"
+NO_PATHS = {"ROS_PACKAGE_PATH": None, "AMENT_PREFIX_PATH": None}
+
+
+@pytest.fixture(scope="module", params=["noetic", "humble"])
+def course(request, tmp_path_factory) -> Path:
+    """The course's packages as ``worldgen course`` writes them for a stack: WORKSPACE/src/intro_robo."""
+    workspace = tmp_path_factory.mktemp(f"course_{request.param}")
+    done = CliRunner().invoke(main, ["course", "--ros", request.param, "-w", str(workspace)])
+    assert done.exit_code == 0, done.output
+    return workspace / "src" / "intro_robo"
+
+
+def hand_in(course: Path, folder: Path, students=("alice", "bob")) -> Path:
+    """Each student's copy of the lab package, unchanged, in ``folder/STUDENT/``."""
+    for student in students:
+        shutil.copytree(course / LAB, folder / student / LAB)
+    return folder
+
+
+def grade(folder: Path, env=None) -> tuple[int, dict]:
+    done = CliRunner().invoke(main, ["validate", "--skip-sim", "--format", "json", str(folder)],
+                              env={**NO_PATHS, **(env or {})})
+    assert done.exit_code in (0, 1), done.output
+    return done.exit_code, json.loads(done.stdout)
+
+
+def naming(doc: dict, package: str) -> list:
+    """(row, finding) for every finding that names ``package``."""
+    return [(r["path"], f) for r in doc["results"] for f in r["findings"]
+            if package in f["message"] or package in (f.get("fix") or "")]
+
+
+def test_a_course_package_that_is_nowhere_is_one_finding_per_submission(course, tmp_path):
+    folder = hand_in(course, tmp_path / "submissions")
+    code, doc = grade(folder)
+    said = naming(doc, WORLD_PACKAGE)
+    assert code == 1
+    for student in ("alice", "bob"):
+        [(row, finding)] = [(row, f) for row, f in said if f"/{student}/" in row]
+        assert row.startswith(str(folder / student / LAB / "launch"))   # the launch file's row, not the package's
+        assert finding["severity"] == "error" and finding["check"] == "launch"
+        assert "cannot be found" in finding["message"] and "the folder graded" in finding["message"]
+        assert "beside the submissions" in finding["fix"] and "worldgen course -w DIR" in finding["fix"]
+    assert len(said) == 2
+    assert all(r["ok"] for r in doc["results"] if r["path"].endswith(LAB))   # the package rows say nothing of it
+
+
+def test_the_course_package_beside_the_submissions_serves_them_all(course, tmp_path):
+    folder = hand_in(course, tmp_path / "submissions")
+    shutil.copytree(course / WORLD_PACKAGE, folder / WORLD_PACKAGE)
+    code, doc = grade(folder)
+    assert code == 0 and naming(doc, WORLD_PACKAGE) == []
+    launches = [r for r in doc["results"] if f"/{LAB}/launch/" in r["path"]]
+    assert len(launches) == 2 and all(r["checks"][:2] == ["launch", "parse"] for r in launches)
+    assert {r["metrics"].get("enclosed") for r in launches} == {True}
+
+
+def test_ros_package_path_finds_it(course, tmp_path):
+    folder = hand_in(course, tmp_path / "submissions")
+    code, doc = grade(folder, {"ROS_PACKAGE_PATH": str(course.parent)})
+    assert code == 0 and naming(doc, WORLD_PACKAGE) == []
+
+
+def test_a_package_several_students_hold_is_not_borrowed_from_another(course, tmp_path):
+    """Alice hands in the world package beside her lab and finds it; Carol hands in one too; Bob, who did not, is
+    not graded against a copy in another student's folder."""
+    folder = hand_in(course, tmp_path / "submissions")
+    for student in ("alice", "carol"):
+        shutil.copytree(course / WORLD_PACKAGE, folder / student / WORLD_PACKAGE)
+    code, doc = grade(folder)
+    said = naming(doc, WORLD_PACKAGE)
+    assert code == 1 and [row.split("/submissions/")[1].split("/")[0] for row, _ in said] == ["bob"]
+
+
+def test_the_run_leaves_out_the_package_the_submissions_share(course, tmp_path):
+    folder = hand_in(course, tmp_path / "submissions")
+    shutil.copytree(course / WORLD_PACKAGE, folder / WORLD_PACKAGE)
+    found = submissions(folder)
+    assert folder / WORLD_PACKAGE in found
+    assert depended_packages(found, "stop-at-wall") == [folder / WORLD_PACKAGE]
+    # a package another depends on that holds the task's node is a submission still
+    launcher = folder / "zed" / "launcher"
+    launcher.mkdir(parents=True)
+    (launcher / "package.xml").write_text(f'<package format="2"><name>launcher</name><version>0.1.0</version>'
+                                          f'<exec_depend>{LAB}</exec_depend></package>', encoding="utf-8")
+    assert depended_packages(submissions(folder), "stop-at-wall") == [folder / WORLD_PACKAGE]
