@@ -8,7 +8,7 @@ round to round, so that a busy machine slows all three alike. Printed: the media
 multiple of the floor's; the simulation's share (validate − ``--skip-sim``); and, in this process, the simulated
 job's own phases (robot load, settle, scan, spin, stop-at-wall) on the same scene.
 
-    .venv/bin/python benchmarks/bench_speed.py [--rounds N]
+    .venv/bin/python benchmarks/bench_speed.py [--rounds N] [--also OTHER_CHECKOUT]
 
 Target: validate of the class room at most 3 times the floor.
 """
@@ -35,10 +35,11 @@ TARGET = 3.0
 
 
 def timed(cmd: list[str], env: dict) -> tuple[float, float]:
-    """Wall and CPU seconds (user + system, the process and all it waited for) of one run of ``cmd``."""
+    """Wall and CPU seconds (user + system, the process and all it waited for) of one run of ``cmd``, run from
+    the file system's root (``python -m`` puts the working folder before PYTHONPATH)."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.perf_counter()
-    proc = subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, env=env)
+    proc = subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, env=env, cwd=os.path.abspath(os.sep))
     wall = time.perf_counter() - t0
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     if proc.returncode not in (0, 1):
@@ -56,15 +57,15 @@ def class_args(tmp: Path) -> tuple[list[str], str]:
     return [str(tmp / "room.world"), "--spawn", "0,0"], "a 5 m room (written here: no corpus)"
 
 
-def measure(commands: dict[str, list[str]], rounds: int, env: dict) -> dict[str, list[tuple[float, float]]]:
+def measure(commands: dict[str, tuple[list[str], dict]], rounds: int) -> dict[str, list[tuple[float, float]]]:
     names = list(commands)
     for name in names:   # warm the file cache and any cache worldgen keeps
-        timed(commands[name], env)
+        timed(*commands[name])
     samples: dict[str, list[tuple[float, float]]] = {name: [] for name in names}
     for i in range(rounds):
         order = names[i % len(names):] + names[:i % len(names)]
         for name in order:
-            samples[name].append(timed(commands[name], env))
+            samples[name].append(timed(*commands[name]))
     return samples
 
 
@@ -94,23 +95,28 @@ def phases(args: list[str]) -> None:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--rounds", type=int, default=11)
+    parser.add_argument("--also", type=Path, metavar="CHECKOUT",
+                        help="also time validate of another checkout (an older commit's, say) in the same rounds")
     opts = parser.parse_args()
-    env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in (str(REPO), os.environ.get("PYTHONPATH")) if p))
     with tempfile.TemporaryDirectory() as tmp:
         # as installed (pip compiles a wheel's modules): bytecode kept, in a folder of this run's own, even
         # where PYTHONDONTWRITEBYTECODE is set; the first round of each command writes it
-        env.pop("PYTHONDONTWRITEBYTECODE", None)
+        env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
         env["PYTHONPYCACHEPREFIX"] = str(Path(tmp) / "pycache")
         args, label = class_args(Path(tmp))
         validate = [sys.executable, "-m", "worldgen", "validate", *args, "--format", "json"]
-        commands = {"floor": FLOOR, "validate": validate, "validate --skip-sim": validate + ["--skip-sim"]}
-        samples = measure(commands, opts.rounds, env)
+        ours = dict(env, PYTHONPATH=os.pathsep.join(p for p in (str(REPO), env.get("PYTHONPATH")) if p))
+        commands = {"floor": (FLOOR, env), "validate": (validate, ours),
+                    "validate --skip-sim": (validate + ["--skip-sim"], ours)}
+        if opts.also is not None:
+            commands[f"validate ({opts.also.name})"] = (validate, dict(env, PYTHONPATH=str(opts.also.resolve())))
+        samples = measure(commands, opts.rounds)
     wall = {n: statistics.median(s[0] for s in v) for n, v in samples.items()}
     cpu = {n: statistics.median(s[1] for s in v) for n, v in samples.items()}
     print(f"validate of {label}; medians of {opts.rounds} interleaved rounds on {os.cpu_count()} cores")
-    print(f"  {'':22s} {'wall':>8s} {'× floor':>8s} {'cpu':>8s} {'× floor':>8s}")
+    print(f"  {'':26s} {'wall':>8s} {'× floor':>8s} {'cpu':>8s} {'× floor':>8s}")
     for name in commands:
-        print(f"  {name:22s} {wall[name]:7.3f}s {wall[name] / wall['floor']:7.2f}x "
+        print(f"  {name:26s} {wall[name]:7.3f}s {wall[name] / wall['floor']:7.2f}x "
               f"{cpu[name]:7.3f}s {cpu[name] / cpu['floor']:7.2f}x")
     share = wall["validate"] - wall["validate --skip-sim"]
     print(f"  the simulation's share (validate − --skip-sim): {share:.3f} s wall, "
