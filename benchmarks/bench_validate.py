@@ -71,7 +71,7 @@ def sim_ratio(world: Path, spawn) -> float:
     from worldgen.check.sim_job import sim_numbers
 
     numbers = sim_numbers(read_world(world), spawn=spawn)
-    return numbers["sim_seconds"] / numbers["wall_seconds"]
+    return numbers.sim_seconds / numbers.wall_seconds
 
 
 def main() -> None:
