@@ -257,9 +257,9 @@ class Bridge(Wire):
                 for name in sorted(published) if name.endswith("/cmd_vel") and name not in taken]
 
 
-def wait_for_start(rospy, bridge: Bridge, param: str) -> None:
-    """Hold simulated time at 0 (publishing /clock) until ``param`` is true on the master: the nodes under
-    test are up, as with Gazebo started paused and then unpaused."""
+def wait_for_start(rospy, bridge: Bridge, param: str | None, file: str | None = None) -> None:
+    """Hold simulated time at 0 (publishing /clock) until ``param`` is true on the master or ``file`` exists: the
+    nodes under test are ready, as with Gazebo started paused and then unpaused."""
     deadline = time.monotonic() + START_WAIT
     clock_at = 0.0
     while time.monotonic() < deadline and not rospy.is_shutdown():
@@ -267,9 +267,9 @@ def wait_for_start(rospy, bridge: Bridge, param: str) -> None:
             bridge.publish_clock()
             clock_at = time.monotonic() + 0.02
         bridge.drain()
-        if rospy.get_param(param, False):
+        if file is not None and os.path.exists(file) or param is not None and rospy.get_param(param, False):
             return
-        time.sleep(0.005)
+        time.sleep(0.005 if file is not None else 0.02)
 
 
 def wait_for_master(param: str, token: str) -> bool:
@@ -302,8 +302,10 @@ def main(argv: list[str]) -> int:
     """``CONFIG.json`` holds: scene_file (a pickled Scene), robot, spawn [x, y, yaw], robots (null, or one entry
     per robot: name, ns, robot, spawn, tf_prefix, mappings; the first is robot/spawn's), graded (the namespace or
     name of the robot the trace is about), no_hit, rate (0 = max), duration (s or null), trace (file or null), bag
-    (file or null), start_param (null: start at once), up_param (null, or [parameter, token]: join the master
-    once it holds the token, see :func:`wait_for_master`), person (null or the loop), set_sim_time (bool),
+    (file or null), start_param and start_file (both null: start at once; else once the parameter is true or
+    the file exists), up_param (null, or [parameter, token]: join the master
+    once it holds the token, see :func:`wait_for_master`), joined_file (null, or a file made once it has joined
+    the master), person (null or the loop), set_sim_time (bool),
     gazebo_msgs (a folder to import gazebo_msgs from, or null), record_scans (bool: every robot's trace gets
     ``lidar`` and every published scan under ``ranges``, see :meth:`.RobotTopics.publish_scan`)."""
     keep_freed_memory()
@@ -329,6 +331,8 @@ def main(argv: list[str]) -> int:
         # Its own messages carry the session's time: it needs no /clock of its own (a second connection on
         # every /clock message, and a thread reading them).
         rospy.init_node("gazebo", disable_signals=True, anonymous=False, disable_rostime=True)
+        if config.get("joined_file"):
+            Path(config["joined_file"]).touch()   # the run may start the nodes (they wait for its topics)
         if config.get("set_sim_time", True):
             rospy.set_param("/use_sim_time", True)
         try:
@@ -340,10 +344,11 @@ def main(argv: list[str]) -> int:
         timing = {"sim_time_s": 0.0, "wall_time_s": 0.0, "real_time_factor": None, "interrupted": True}
         try:
             deliver_interrupts()   # one that came while starting is raised here, where it is handled
-            if config.get("start_param"):
-                wait_for_start(rospy, bridge, config["start_param"])
+            held = config.get("start_param") or config.get("start_file")
+            if held:
+                wait_for_start(rospy, bridge, config.get("start_param"), config.get("start_file"))
             print("worldgen-sim: running", file=sys.stderr, flush=True)
-            pids = rospy.get_param("/worldgen/pids", []) if config.get("start_param") else []
+            pids = rospy.get_param("/worldgen/pids", []) if held else []
             timing = run_loop(bridge, float(config.get("rate") or 0.0), config.get("duration"), pids)
         except KeyboardInterrupt:
             pass

@@ -1,9 +1,10 @@
 """When the students' nodes of a ROS 1 run are ready for simulated time to start: each has joined the master and
 its links with the simulator are up, so that the first scan reaches it and its first command reaches the robot.
 
-Looked at every :data:`POLL` seconds, from outside: the master's ``getSystemState`` (which node publishes and
-subscribes what) and the simulator's own ``getBusInfo`` (which of its connections are established, and with
-whom). A node (any name the master knows but the simulator's) is *ready* when
+Looked at every :data:`POLL` seconds (:data:`POLL_JOINING` until every node has joined), from outside: the
+master's ``getSystemState`` (which node publishes and subscribes what) and the simulator's own ``getBusInfo``
+(which of its connections are established, and with whom). A node (any name the master knows but the
+simulator's) is *ready* when
 
 * every topic it shares with the simulator — subscribed to one the simulator publishes (``/clock`` included),
   or publishing one the simulator subscribes to — has its connection established;
@@ -29,7 +30,8 @@ from ..interface.topics import TASK_INPUTS
 
 CALLER = "/worldgen"
 SIMULATOR = "/gazebo"
-POLL = 0.01            # s between looks
+POLL = 0.01            # s between looks once every node has joined
+POLL_JOINING = 0.03    # s between looks before (a node's Python takes a few tenths of a second to start)
 SETTLE = 0.3           # s after a node shows before it is taken as ready anyway
 IGNORED = ("/rosout",)  # what every node publishes and the simulator never subscribes to
 
@@ -97,6 +99,7 @@ class Readiness:
         self.node_uris: dict[str, str] = {}
         self.first_seen: dict[str, float] = {}
         self.previous: dict[str, tuple] = {}
+        self.joined = False   # as many nodes as processes known to the master, at the last look
 
     def _links(self) -> set[tuple[str, str]] | None:
         """The simulator's established connections: (topic, the other end: a node's name for what it publishes,
@@ -133,10 +136,15 @@ class Readiness:
         processes still running); once ``exited`` processes have ended (their names may stay with the master,
         their links gone), whether ``running`` nodes are ready."""
         state = _call(self.master_uri, "getSystemState")
-        links = self._links() if state is not None else None
-        if state is None or links is None:
+        if state is None:
             return False
         nodes, now = graph(state), time.monotonic()
+        self.joined = len(nodes) >= running
+        if not self.joined:   # some still starting: no need to ask the simulator yet
+            return False
+        links = self._links()
+        if links is None:
+            return False
         settled = 0
         for name, node in nodes.items():
             self.first_seen.setdefault(name, now)
@@ -158,5 +166,5 @@ def wait_until_ready(readiness: Readiness, children, timeout: float) -> bool:
         running = sum(c.running for c in children)
         if readiness.ready(running, len(children) - running):
             return True
-        time.sleep(POLL)
+        time.sleep(POLL if readiness.joined else POLL_JOINING)
     return False

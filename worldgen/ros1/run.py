@@ -27,11 +27,10 @@ from ..bridge.supervise import Child, Supervisor
 from ..bridge.world import World, write_config
 from ..core.errors import WorldgenError
 from .gazebo_types import gazebo_msgs_path
-from .master import node_names, ros_env, set_param, start_master
+from .master import ros_env, set_param, start_master
 from .ready import Readiness, wait_until_ready
 from .rosenv import find_rospy
 
-START_PARAM = "/worldgen/start"
 UP_PARAM = "/worldgen/up"   # the parameters are set: the simulator may join (its value: the run's token)
 UP_TIMEOUT = 15.0      # s of real time for the nodes to be ready
 SIM_START_TIMEOUT = 30.0
@@ -64,8 +63,9 @@ def run_nodes(world: World, nodes: list[NodeSpec], options: RunOptions, base_env
         trace_file = tmp / "trace.json"
         config = write_config(tmp, world, rate=options.rate, duration=options.duration, no_hit=options.no_hit,
                               trace=str(trace_file), bag=str(options.bag) if options.bag else None,
-                              start_param=START_PARAM, up_param=[UP_PARAM, tmp_name], person=options.person,
-                              set_sim_time=False, graded=options.robot_ns, record_scans=options.record_scans)
+                              start_file=str(tmp / "start"), up_param=[UP_PARAM, tmp_name], person=options.person,
+                              set_sim_time=False, graded=options.robot_ns, record_scans=options.record_scans,
+                              joined_file=str(tmp / "joined"))
         started: dict = {}
 
         def simulator_beside(uri: str) -> None:   # started with the master, joins it once UP_PARAM says so
@@ -80,19 +80,20 @@ def run_nodes(world: World, nodes: list[NodeSpec], options: RunOptions, base_env
         for name, value in dict(world.params, **launch_params(nodes)).items():
             set_param(uri, name, value)
         set_param(uri, UP_PARAM, tmp_name)
-        _wait_for_simulator(simulator, uri)
+        _wait_for_simulator(simulator, tmp / "joined")
         children = [supervisor.start(n.name, n.argv, dict(env, **n.env), log=tmp / f"node_{i}.log")
                     for i, n in enumerate(nodes)]
         wait_until_ready(Readiness(uri, options.task), children, UP_TIMEOUT)
         set_param(uri, "/worldgen/pids", [c.proc.pid for c in children])
-        set_param(uri, START_PARAM, True)
+        (tmp / "start").touch()
         trace, alive, ended_by = finish_run(simulator, children, nodes, options, supervisor, trace_file)
         return outcome_of(trace, nodes, children, alive, ended_by, options, left=supervisor.left)
 
 
-def _wait_for_simulator(simulator: Child, uri: str) -> None:
+def _wait_for_simulator(simulator: Child, joined: Path) -> None:
+    """Until the simulator has joined the master (it makes the file ``joined``)."""
     deadline = time.monotonic() + SIM_START_TIMEOUT
-    while "/gazebo" not in node_names(uri):
+    while not joined.exists():
         check_simulator(simulator)
         if time.monotonic() > deadline:
             raise WorldgenError(f"the simulator did not come up within {SIM_START_TIMEOUT:g} s")
