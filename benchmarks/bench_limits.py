@@ -315,6 +315,8 @@ CAMPAIGN = [
     Case("far-pose-1e308-preview", lambda t: ["preview", str(_far_pose(t)), "-o", str(t / "f.png")], BOUNDED, (0,)),
     Case("grid-cell-1cm", lambda t: ["validate", str(_fine_grid(t))], BOUNDED, (0, 1)),
     Case("grid-random-200", lambda t: _validate(_random_grid(t, 200)), BOUNDED, (0, 1)),
+    Case("grid-random-200-sim", lambda t: ["validate", str(_random_grid(t, 200))], BOUNDED, (0, 1)),
+    Case("grid-random-400", lambda t: ["validate", str(_random_grid(t, 400))], REFUSAL, (2,)),
     Case("yaml-plain-1.1MB", lambda t: ["build", str(_plain_big_yaml(t)), "-o", str(t / "o")], BOUNDED, (2,)),
     Case("folder-link-to-root", _link_to_root, BOUNDED, (0, 1)),
 ]

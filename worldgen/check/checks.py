@@ -183,6 +183,7 @@ def check_spawn_clear(scene: Scene, spawn: tuple[float, float, float], body: Rob
                       ) -> Outcome:
     """The robot's footprint at the spawn pose touches no wall or obstacle between the floor at ``ground``
     (above the climbing threshold) and the robot's top; how far the nearest is; room to turn in place."""
+    import numpy as np
     import shapely
 
     robot = placed_footprint(body, spawn)
@@ -191,9 +192,11 @@ def check_spawn_clear(scene: Scene, spawn: tuple[float, float, float], body: Rob
     metrics: dict = {"min_clearance_m": None, "nearest_obstacle": None, "turn_clearance_m": None}
     if not prints:
         return Outcome([], metrics)
-    distances = [(p.geometry.distance(robot), p.label) for p in prints]
+    geometries = [p.geometry for p in prints]   # measured in one call each (a grid: thousands of footprints)
+    with np.errstate(over="ignore"):   # a spawn 1000 km out: inf, as one by one
+        distances = list(zip(shapely.distance(geometries, robot).tolist(), (p.label for p in prints)))
+        turn = float(shapely.distance(geometries, centre).min()) - body.turn_radius
     clearance, nearest = min(distances)
-    turn = min(p.geometry.distance(centre) for p in prints) - body.turn_radius
     metrics.update(min_clearance_m=clearance, nearest_obstacle=nearest, turn_clearance_m=turn)
     where = f"spawn {_xy(spawn)}, yaw {spawn[2]:.2f}"
     hit = sorted({label for d, label in distances if d <= 0})

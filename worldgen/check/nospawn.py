@@ -36,20 +36,20 @@ def _xy(x: float, y: float) -> str:
 def default_spawns(scene, robot: str) -> List[DefaultSpawn]:
     """The places to check ``scene`` from for ``robot`` when no spawn is given (see the module docstring)."""
     rooms = world_rooms(scene, robot_radius(robot))
-    points = room_points(rooms)
-    if points:
-        shown = points[:MAX_ROOMS]
+    regions = rooms.rooms()
+    shown = room_points(rooms, MAX_ROOMS, regions)   # only the rooms checked are measured
+    count = len(regions)
+    if shown:
         spawns = []
         for i, (x, y) in enumerate(shown, start=1):
-            which = f"room {i}" if len(points) > 1 else "the world's only closed room"
+            which = f"room {i}" if count > 1 else "the world's only closed room"
             note = (f"no spawn given: checked from the deepest free point of {which} at {_xy(x, y)}"
-                    + (f" (rooms numbered largest first, {len(points)} in all)" if len(points) > 1 and i == 1
-                       else ""))
-            spawns.append(DefaultSpawn((x, y, 0.0), note, i if len(points) > 1 else None))
-        if len(points) > MAX_ROOMS:
+                    + (f" (rooms numbered largest first, {count} in all)" if count > 1 and i == 1 else ""))
+            spawns.append(DefaultSpawn((x, y, 0.0), note, i if count > 1 else None))
+        if count > MAX_ROOMS:
             first = spawns[0]
             spawns[0] = DefaultSpawn(first.spawn, first.source, first.room, (Finding(
-                "enclosed", "info", f"the world has {len(points)} closed rooms: only the {MAX_ROOMS} largest "
+                "enclosed", "info", f"the world has {count} closed rooms: only the {MAX_ROOMS} largest "
                 "were checked", fix="give the spawn (--spawn, a launch file or the spec's robot) to check "
                                     "from a given room"),))
         return spawns

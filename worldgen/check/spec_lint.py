@@ -32,6 +32,31 @@ def _obstacle_shape(o):
     return shapely.Point(o.at).buffer(o.radius or 0.0, quad_segs=16)
 
 
+def _overlapping_rooms(spec) -> List[Finding]:
+    """A warning per pair of rooms that share floor, in the order of the spec's rooms (an STRtree finds the pairs
+    whose polygons meet: a spec of thousands of rooms is not compared pair by pair)."""
+    import shapely
+
+    findings: List[Finding] = []
+    polygons = [(room.name, shapely.Polygon(room.vertices)) for room in spec.rooms]
+    valid = [i for i, (_, p) in enumerate(polygons) if p.is_valid]
+    if len(valid) < 2:
+        return findings
+    tree = shapely.STRtree([polygons[i][1] for i in valid])
+    near, other = tree.query([polygons[i][1] for i in valid], predicate="intersects")
+    for i, j in sorted({(valid[a], valid[b]) for a, b in zip(near, other) if valid[a] < valid[b]}):
+        (a_name, a), (b_name, b) = polygons[i], polygons[j]
+        shared = a.intersection(b)
+        if shared.area > MIN_OVERLAP:
+            findings.append(Finding(
+                "spec", "warning",
+                f"rooms '{a_name}' and '{b_name}' overlap: they share {shared.area:.2f} m² of floor around "
+                f"{_xy(shared.representative_point())}, so the walls of one run through the other",
+                where=spec.source, fix="move the rooms so that they only share a wall (a side drawn along the "
+                                       "same line), or join them into one polygon"))
+    return findings
+
+
 def lint_spec(spec, building=None, sides=None) -> List[Finding]:
     """The ``spec`` check's findings for ``spec`` (none when it does not build: its own error says why);
     ``building`` and ``sides`` (:func:`worldgen.check.spec_names.wall_sides`) when already known."""
@@ -42,24 +67,17 @@ def lint_spec(spec, building=None, sides=None) -> List[Finding]:
         sides = sides if sides is not None else wall_sides(spec, building)
     except Exception:
         return []
-    findings: List[Finding] = []
-    polygons = [(room.name, shapely.Polygon(room.vertices)) for room in spec.rooms]
-    for i, (a_name, a) in enumerate(polygons):
-        for b_name, b in polygons[i + 1:]:
-            if not (a.is_valid and b.is_valid):
-                continue
-            shared = a.intersection(b)
-            if shared.area > MIN_OVERLAP:
-                findings.append(Finding(
-                    "spec", "warning",
-                    f"rooms '{a_name}' and '{b_name}' overlap: they share {shared.area:.2f} m² of floor around "
-                    f"{_xy(shared.representative_point())}, so the walls of one run through the other",
-                    where=spec.source, fix="move the rooms so that they only share a wall (a side drawn along the "
-                                           "same line), or join them into one polygon"))
-    walls = [(w, shapely.Polygon(w.footprint())) for w in building.walls]
+    findings = _overlapping_rooms(spec)
+    walls = list(building.walls)
+    boxes = [shapely.Polygon(w.footprint()) for w in walls]
+    tree = shapely.STRtree(boxes)   # only the walls whose box meets an obstacle's are cut with it
     for o, name in zip(spec.obstacles, obstacle_names(spec.obstacles, spec.name)):
         shape = _obstacle_shape(o)
-        hit = [(w, cut) for w, box in walls for cut in (shape.intersection(box),) if cut.area > 1e-4]
+        hit = []
+        for k in sorted(tree.query(shape, predicate="intersects")):
+            cut = shape.intersection(boxes[k])
+            if cut.area > 1e-4:
+                hit.append((walls[k], cut))
         for wall, cut in hit[:3]:
             spot = cut.representative_point()
             what = side_name(sides[wall.index], (spot.x, spot.y)) if wall.index in sides else f"wall {wall.index}"

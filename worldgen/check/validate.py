@@ -26,6 +26,7 @@ from dataclasses import replace as dc_replace
 from pathlib import Path
 from typing import Callable, Sequence
 
+from . import budget
 from .camera_view import check_camera
 from .launch_world import world_not_found
 from .checks import (GEOMETRIC_CHECKS, SDFORMAT_ABSENT, SIM_CHECKS, check_enclosed, check_parse,
@@ -173,6 +174,7 @@ def _plan_path(path: Path, display: str, options: Options, launch_info, notes) -
     else:
         job = Job(path=display, world=path)   # read_world reads a model folder's model.sdf itself
         if kind == "world":
+            budget.refuse(budget.file_shapes(path), "the world", path, budget.WORLD_HINT)
             _spec_beside(job, path)
     if launch_info is not None:
         _apply_launch(job, launch_info, Path(options.launch))
@@ -196,7 +198,10 @@ def _folder_jobs(folder: Path, options: Options, launch_info, notes) -> list[Job
     for pkg in found.packages:
         jobs += _package_jobs(pkg, options, shared)
     for kind, path in found.files:
-        jobs += _plan_path(path, str(path), options, launch_info, None)
+        try:
+            jobs += _plan_path(path, str(path), options, launch_info, None)
+        except InputError as err:   # one file refused: a failed row, the others still run
+            jobs.append(_input_job(str(path), err))
     return jobs
 
 
@@ -311,6 +316,7 @@ def _spec_job(path: Path, display: str) -> Job:
         job.findings.append(_parse_error(err, path))
         job.pre_checks.append("parse")
         return job
+    budget.refuse(budget.spec_shapes(job.floorplan), "the spec", path, budget.SPEC_HINT)   # before it is built
     _take_spec_pose(job, job.floorplan, path)
     return job
 
@@ -428,6 +434,10 @@ def _check_world(result: Result, source: WorldSource, options: Options, tmp: Pat
     except WorldFileError as err:
         result.findings.append(_parse_error(err, source.path))
         scene = None
+    over = budget.too_many(scene, str(source.path)) if scene is not None else None
+    if over is not None:   # its includes took it past the limit
+        result.findings.append(over)
+        return [_skip_rest(result, "too many shapes to check", options)]
     if options.sdformat:   # even when our reader gave up: libsdformat may say more about why
         _sdformat(result, source, options, tmp)
     if scene is None:

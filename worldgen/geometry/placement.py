@@ -56,7 +56,12 @@ class Rooms:
     radius: float
 
     def fits(self, region) -> bool:
-        """Whether a robot of :attr:`radius` fits somewhere in ``region`` (one of :attr:`free`)."""
+        """Whether a robot of :attr:`radius` fits somewhere in ``region`` (one of :attr:`free`). A region whose
+        bounds are narrower than the robot either way holds no disc of it (a noisy grid's thousands of pockets
+        are told so without shrinking each)."""
+        x0, y0, x1, y1 = region.bounds
+        if min(x1 - x0, y1 - y0) < 2 * self.radius:
+            return False
         return not region.buffer(-self.radius, quad_segs=8).is_empty
 
     def rooms(self) -> list:
@@ -110,14 +115,15 @@ def deepest_point(rooms: Rooms) -> tuple[float, float] | None:
     return (point.x + 0.0, point.y + 0.0)
 
 
-def room_points(rooms: Rooms) -> list[tuple[float, float]]:
+def room_points(rooms: Rooms, most: int | None = None, regions: list | None = None) -> list[tuple[float, float]]:
     """The deepest free point (centre of the largest inscribed circle, to the centimetre where that still
-    fits) of every closed room the robot fits in, largest room first; [] when the world has none."""
+    fits) of every closed room the robot fits in (of the ``most`` largest), largest room first; [] when the world
+    has none. ``regions``: ``rooms.rooms()``, when known."""
     import shapely
     from shapely.ops import polylabel
 
     points = []
-    for region in rooms.rooms():
+    for region in (rooms.rooms() if regions is None else regions)[:most]:
         point = polylabel(region, tolerance=0.002)
         x, y = round(point.x, 2) + 0.0, round(point.y, 2) + 0.0
         rounded = shapely.Point(x, y)

@@ -10,6 +10,7 @@ from dataclasses import dataclass
 from ..core.boxes import box_corners
 from ..core.scene import Scene, Shape
 from .mesh_section import mesh_footprint
+from .scene_memo import remembered
 
 SLIVER = 0.0005        # every footprint grows by this much: gaps under 1 mm are closed
 CIRCLE_SEGMENTS = 16   # per quarter circle, for cylinders and spheres
@@ -143,7 +144,12 @@ def section(shape: Shape, z: float, fast: bool = False):
 
 
 def footprints(scene: Scene, z: float) -> list[Footprint]:
-    """Every shape of ``scene`` cut at height ``z``, in scene order (shapes the plane misses are left out)."""
+    """Every shape of ``scene`` cut at height ``z``, in scene order (shapes the plane misses are left out); cut
+    once per scene and height (:mod:`.scene_memo`)."""
+    return list(remembered(scene, ("footprints", z), lambda: _footprints(scene, z)))
+
+
+def _footprints(scene: Scene, z: float) -> list[Footprint]:
     out = []
     shapes = scene.obstacles()
     fast = len(shapes) > FAST_BOXES
@@ -158,7 +164,12 @@ def footprints_between(scene: Scene, z0: float, z1: float, steps: int = 4, also:
                        ) -> list[Footprint]:
     """Footprints of everything between heights ``z0`` and ``z1``: sections at ``steps`` heights (and at the
     heights in ``also``), united per shape. Used for the robot's body, which spans a height range rather than
-    a single plane."""
+    a single plane. Computed once per scene and heights (:mod:`.scene_memo`)."""
+    return list(remembered(scene, ("between", z0, z1, steps, tuple(also)),
+                           lambda: _footprints_between(scene, z0, z1, steps, also)))
+
+
+def _footprints_between(scene: Scene, z0: float, z1: float, steps: int, also: tuple[float, ...]) -> list[Footprint]:
     import shapely
 
     heights = sorted({z0 + (z1 - z0) * i / (steps - 1) for i in range(steps)} | set(also))
@@ -198,19 +209,29 @@ def shape_top(shape: Shape) -> float | None:
 
 def ground_under(scene: Scene, xy: tuple[float, float], max_step: float) -> tuple[float, str | None]:
     """The floor height under ``xy``: the top of the highest shape no taller than ``max_step`` whose top face
-    lies under the point (a floor slab such as Gazebo's asphalt_plane), else 0; and that shape's label."""
+    lies under the point (a floor slab such as Gazebo's asphalt_plane), else 0; and that shape's label. The slabs
+    are found once per scene (:mod:`.scene_memo`)."""
     import shapely
 
     point = shapely.Point(xy)
     best, label = 0.0, None
+    for top, name, cut in remembered(scene, ("slabs", max_step), lambda: _slabs(scene, max_step)):
+        if best < top and cut.covers(point):
+            best, label = top, name
+    return best, label
+
+
+def _slabs(scene: Scene, max_step: float) -> list:
+    """(top, label, top face) of every shape whose top is above 0 and at most ``max_step``, in scene order."""
+    found = []
     for shape in scene.obstacles():
         top = shape_top(shape)
-        if top is None or not best < top <= max_step:
+        if top is None or not 0.0 < top <= max_step:
             continue
         cut = section(shape, top - 0.001)
-        if cut is not None and cut.covers(point):
-            best, label = top, shape.label
-    return best, label
+        if cut is not None:
+            found.append((top, shape.label, cut))
+    return found
 
 
 # ------------------------------------------------------------------------------------------------- enclosure
