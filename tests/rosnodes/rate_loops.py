@@ -17,12 +17,15 @@ from rosgraph_msgs.msg import Clock
 
 args = dict(a.split(":=", 1) for a in sys.argv[1:] if ":=" in a)
 
+subscribed, tell = os.pipe()
 if os.fork() == 0:
     clock_file = open(args["out"] + ".clock", "w", buffering=1)
     rospy.init_node("clock_recorder", disable_rostime=True)
     rospy.Subscriber("/clock", Clock, lambda msg: clock_file.write(f"{msg.clock.to_nsec()}\n"))
+    os.write(tell, b"x")
     rospy.spin()
     os._exit(0)
+os.read(subscribed, 1)   # the recorder has joined first (a run counts one node a process before it starts)
 
 out = open(args["out"], "w", buffering=1)
 lock = threading.Lock()

@@ -1,4 +1,5 @@
-"""A ROS master: is one answering at a URI, and starting a private one (``rosmaster --core``) on a free port.
+"""A ROS master: is one answering at a URI, and starting a private one (``rosmaster --core``'s master, without
+its log file) on a free port.
 
 The master is a child in a process group of its own (see :mod:`.supervise`), waited for until it answers, and
 stopped with everything it started.
@@ -66,11 +67,43 @@ def rosmaster_command() -> str:
     return found
 
 
+# What ``rosmaster --core -p PORT`` runs, less its log file: rosmaster's own Master on the port, until stopped.
+# (rosmaster's main first reads a logging configuration and opens master.log under ROS_LOG_DIR, a tenth of a
+# second of the master's start, which every run waits for; a private master's log is thrown away with its run.)
+MASTER_MAIN = """import sys, time
+import rosmaster.master, rosmaster.master_api
+master = rosmaster.master.Master(int(sys.argv[sys.argv.index('-p') + 1]), rosmaster.master_api.NUM_WORKERS)
+try:
+    master.start()
+    while master.ok():
+        time.sleep(0.1)
+except KeyboardInterrupt:
+    pass
+finally:
+    master.stop()
+"""
+
+
+def master_argv(command: str, port: int) -> list[str]:
+    """The command line of a private master on ``port``: :data:`MASTER_MAIN` run by the Python of ``command``
+    (rosmaster's ``#!`` line), or ``command --core -p PORT`` itself when that line names no Python."""
+    try:
+        with open(command, "rb") as handle:
+            first = handle.readline(200).decode("utf-8", "replace").strip()
+    except OSError:
+        first = ""
+    python = first[2:].strip().split()[0] if first.startswith("#!") and first[2:].strip() else ""
+    if "python" in os.path.basename(python) and os.access(python, os.X_OK):
+        return [python, "-c", MASTER_MAIN, "--core", "-p", str(port)]
+    return [command, "--core", "-p", str(port)]
+
+
 def start_master(supervisor: Supervisor, port: int | None, env: dict[str, str], log: Path | None = None,
                  meanwhile: Callable[[str], None] | None = None) -> tuple[Child, str]:
-    """``rosmaster --core -p PORT`` (a free port when None) under ``supervisor``, waited for until it answers;
-    returns the child and its URI. InputError when the port is taken or the master does not come up.
-    ``meanwhile(uri)`` is called once the master is started, before waiting for it (what can start beside it)."""
+    """``rosmaster --core -p PORT`` (a free port when None; see :func:`master_argv`) under ``supervisor``, waited
+    for until it answers; returns the child and its URI. InputError when the port is taken or the master does not
+    come up. ``meanwhile(uri)`` is called once the master is started, before waiting for it (what can start beside
+    it)."""
     command = rosmaster_command()
     if port is None:
         port = free_port()
@@ -78,8 +111,8 @@ def start_master(supervisor: Supervisor, port: int | None, env: dict[str, str], 
         raise InputError(f"port {port} is already in use, so no ROS master can start there",
                          hint="stop what listens there, or set ROS_MASTER_URI to a free port")
     uri = f"http://127.0.0.1:{port}"
-    child = supervisor.start("rosmaster", [command, "--core", "-p", str(port)], dict(env, ROS_MASTER_URI=uri),
-                             log=log, last=True)
+    child = supervisor.start("rosmaster", master_argv(command, port), dict(env, ROS_MASTER_URI=uri), log=log,
+                             last=True)
     if meanwhile is not None:
         meanwhile(uri)
     deadline = time.monotonic() + START_TIMEOUT

@@ -42,6 +42,7 @@ import os
 import sys
 import threading
 import time
+import types
 import warnings
 from pathlib import Path
 
@@ -272,6 +273,23 @@ def wait_for_start(rospy, bridge: Bridge, param: str | None, file: str | None = 
         time.sleep(0.005 if file is not None else 0.02)
 
 
+def join_master(rospy) -> None:
+    """``rospy.init_node`` as ``/gazebo``: without simulated time of its own (its messages carry the session's
+    time; a /clock subscription would be a second connection on every /clock message, and a thread reading them),
+    and without rospy's tenth-of-a-second naps while it waits for its own registration (a run starts its nodes
+    only once the simulator has joined)."""
+    import rospy.impl.init as init_impl
+
+    real = init_impl.time if getattr(init_impl, "time", None) is time else None
+    if real is not None:
+        init_impl.time = types.SimpleNamespace(sleep=lambda seconds: time.sleep(min(seconds, 0.002)))
+    try:
+        rospy.init_node("gazebo", disable_signals=True, anonymous=False, disable_rostime=True)
+    finally:
+        if real is not None:
+            init_impl.time = real
+
+
 def wait_for_master(param: str, token: str) -> bool:
     """Until the master (``ROS_MASTER_URI``) holds ``token`` in ``param``: it is up and the run's parameters are
     set (the simulator starts beside the master, see :mod:`.run`). False when a stop signal comes first (held
@@ -328,9 +346,7 @@ def main(argv: list[str]) -> int:
     with session:
         if config.get("up_param") and not wait_for_master(*config["up_param"]):
             return 0   # stopped, or no master, before the run began: nothing to write
-        # Its own messages carry the session's time: it needs no /clock of its own (a second connection on
-        # every /clock message, and a thread reading them).
-        rospy.init_node("gazebo", disable_signals=True, anonymous=False, disable_rostime=True)
+        join_master(rospy)
         if config.get("joined_file"):
             Path(config["joined_file"]).touch()   # the run may start the nodes (they wait for its topics)
         if config.get("set_sim_time", True):
