@@ -141,11 +141,13 @@ def test_build_package_killed(tmp_path):
     a, b = spec_pair(tmp_path)
     run(["scaffold", "pkg", "rospy", "-p", tmp_path], tmp_path)
     pkg = tmp_path / "pkg"
+    manifest = (pkg / "package.xml").read_bytes()   # build gives it the launch file's exec_depends, in the same set
 
     def reset():
         for p in (pkg / "worlds" / "lab.world", pkg / "launch" / "turtlebot3_in_lab.launch"):
             if p.exists():
                 p.unlink()
+        (pkg / "package.xml").write_bytes(manifest)
 
     kill_loop(tmp_path, pkg, lambda i: ["build", (a, b)[i], "--package", pkg], reset=reset)
 

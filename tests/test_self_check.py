@@ -1,6 +1,7 @@
 """worldgen reads what it writes without noise: every file ``new``, ``generate``, ``build``, ``launch``,
 ``scaffold`` and ``course`` write, for all three stacks, passes ``validate`` with no warning or info about the
-files themselves. What validate may still say: a ROS package the files use that this machine lacks (the
+files themselves — also a world built (``build --package``) or a launch file written (``launch``) into a package
+scaffolded without ``--world``, whose package.xml is given the launch file's exec_depends. What validate may still say: a ROS package the files use that this machine lacks (the
 machine's, not the files'), and figures: the camera's measure of the tape, the share of LiDAR beams a big room's
 far corners leave out of range (measures, not faults)."""
 
@@ -48,8 +49,17 @@ def written(tmp_path_factory) -> list:
         package = out / f"packages_{ros}" / f"lab_{ros}"
         world = package / "worlds" / ("track.sdf" if ros == "jazzy" else "track.world")
         invoke("launch", str(world), "--ros", ros, "--name", "again")
+        # packages scaffolded without --world: a world built into one, a world given a launch file in another
+        bare = out / f"bare_{ros}"
+        for name in ("built", "launched"):
+            invoke("scaffold", f"{name}_{ros}", "rospy" if ros == "noetic" else "rclpy", "--ros", ros, "-p", str(bare))
+        invoke("build", str(specs / "track.yaml"), "--ros", ros, "--package", str(bare / f"built_{ros}"))
+        (bare / f"launched_{ros}" / "worlds").mkdir(exist_ok=True)
+        copy = bare / f"launched_{ros}" / "worlds" / world.name
+        copy.write_bytes(world.read_bytes())
+        invoke("launch", str(copy), "--ros", ros, "--node", "lab_nodes/driver")
         targets += sorted((out / f"built_{ros}").glob("*.*"))
-        targets += [out / f"course_{ros}", out / f"packages_{ros}"]
+        targets += [out / f"course_{ros}", out / f"packages_{ros}", bare]
     if (out / "built_noetic" / "room" / "model.sdf").is_file():
         targets.append(out / "built_noetic" / "room")
     return targets

@@ -77,8 +77,7 @@ def build_command(spec: Path, out_dir: Path, sdf_version: str | None, model_dir:
         model = launch_model(plan)
         spawn = spec_spawn(plan, world_text, model)
         files.update(package_world_files(package_dir, building.name, world_text, spawn, ros, model))
-    for path in write_files(files, force=force, within=package_dir if package_dir is not None else out_dir):
-        click.echo(f"wrote {path}")
+    _write(files, force, package_dir if package_dir is not None else out_dir, package_dir, ros)
 
 
 def _build_gzsim(spec: Path, plan, building, out_dir: Path, sdf_version: str | None, model_dir: bool,
@@ -109,8 +108,20 @@ def _build_gzsim(spec: Path, plan, building, out_dir: Path, sdf_version: str | N
         model = launch_model(plan)
         files = without_same_params(package_world_files(package_dir, building.name, world_text,
                                                         spec_spawn(plan, classic, model), "jazzy", model, cmd_vel))
-    for path in write_files(files, force=force, within=package_dir if package_dir is not None else out_dir):
-        click.echo(f"wrote {path}")
+    _write(files, force, package_dir if package_dir is not None else out_dir, package_dir, "jazzy")
+
+
+def _write(files: dict, force: bool, within: Path, package_dir: Path | None, ros: str) -> None:
+    """Write the files, all or none; into a package, its package.xml is given the exec_depends the launch file
+    needs when it lacks them (a package scaffolded without --world), so that validate has nothing to say."""
+    from ..core.fsio import write_files
+    from ..packages.world_files import added_depends, launch_depends_update
+
+    updated = launch_depends_update(package_dir, ros) if package_dir is not None else {}
+    said = {path: f"updated {path}: exec_depend {', '.join(added_depends(path, text))} (what its launch file "
+                  "starts)" for path, text in updated.items()}
+    for path in write_files({**files, **updated}, force=force, within=within, update=set(updated)):
+        click.echo(said.get(path, f"wrote {path}"))
 
 
 def _text(name: str) -> str:

@@ -67,6 +67,7 @@ def launch_command(world: Path, package: str | None, name: str | None, model: st
     from ..launch.targets import check_world_target, cmd_vel_type
     from ..core.spawnpose import floor_pose, parse_spawn
     from ..launch.spawn import spawn_for_world
+    from ..packages.world_files import added_depends, launch_depends_update
 
     node_refs = [parse_node(n) for n in nodes]
     check_world_target(world, ros)
@@ -96,15 +97,17 @@ def launch_command(world: Path, package: str | None, name: str | None, model: st
     else:
         text = launch_xml(world.name, package, model, pose, node_refs, launch_name=launch_name)
     folder = output if output is not None else (world_pkg / "launch" if world_pkg is not None else Path("."))
+    files = {folder / launch_name: text}
     if ros == "jazzy":   # the bridge's topics, in the package beside the world (or beside the launch file)
-        params = (world_pkg or folder) / "params" / BRIDGE_FILE
-        written = write_files(without_same_params({folder / launch_name: text, params: bridge_yaml(kind)}),
-                              force=force, within=world_pkg or folder)
-        target = written[0]
-        for extra in written[1:]:
-            click.echo(f"wrote {extra} (the ros_gz_bridge topics; install params/ with the package)")
-    else:
-        target = write_files({folder / launch_name: text}, force=force, within=world_pkg or folder)[0]
+        files = without_same_params({**files, (world_pkg or folder) / "params" / BRIDGE_FILE: bridge_yaml(kind)})
+    inside = world_pkg is not None and os.path.abspath(folder).startswith(os.path.join(os.path.abspath(world_pkg), ""))
+    updated = launch_depends_update(world_pkg, ros, {n.package for n in node_refs}) if inside else {}
+    said = {path: f"updated {path}: exec_depend {', '.join(added_depends(path, new))} (what its launch file starts)"
+            for path, new in updated.items()}
+    written = write_files({**files, **updated}, force=force, within=world_pkg or folder, update=set(updated))
+    target = written[0]
+    for extra in written[1:]:
+        click.echo(said.get(extra, f"wrote {extra} (the ros_gz_bridge topics; install params/ with the package)"))
     where = {"given": "--spawn", "spec": "the spec's robot pose", "world": "the deepest free point of the room",
              "open": "the world has no closed room: the deepest free point inside its walls"}
     click.echo(f"wrote {target} (spawn {format_number(pose[0])}, {format_number(pose[1])}, yaw "

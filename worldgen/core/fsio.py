@@ -138,13 +138,13 @@ def _replay(journal: Path) -> None:
     """Complete the moves of a committed journal (those still waiting), then drop it."""
     try:
         plan = json.loads(journal.read_text(encoding="utf-8"))
-        moves = [(Path(a), Path(b)) for a, b in plan["moves"]]
+        moves = [(Path(move[0]), Path(move[1]), len(move) > 2) for move in plan["moves"]]
         force = bool(plan["force"])
-    except (OSError, ValueError, KeyError, TypeError):
+    except (OSError, ValueError, KeyError, TypeError, IndexError):
         moves, force = [], False
-    for tmp, target in moves:
+    for tmp, target, replace in moves:   # replace: a file the run was updating in place
         if _exists(tmp):
-            _move(tmp, target, force, replay=True)
+            _move(tmp, target, force or replace, replay=True)
     os.unlink(journal)
 
 
@@ -264,19 +264,23 @@ def check_within(targets: Iterable[Path], root: Path) -> None:
 
 
 def write_files(files: Mapping[str | Path, FileData], *, force: bool = False,
-                executable: frozenset[str] | set[str] = frozenset(), within: Path | None = None) -> list[Path]:
+                executable: frozenset[str] | set[str] = frozenset(), within: Path | None = None,
+                update: frozenset | set = frozenset()) -> list[Path]:
     """Write every file of ``files`` (path → text or bytes) or none of them (see the module docstring).
 
     Existing targets (a symbolic link too, dangling or not) are refused unless ``force``; with ``force`` a link
     is replaced, not followed. Paths listed in ``executable`` (as given) get mode 0755, the rest 0644. With
     ``within`` (an output folder such as a package), nothing is written through a symlinked folder inside it
-    (:func:`check_within`). Returns the written paths in the given order.
+    (:func:`check_within`). Paths in ``update`` are files the command rewrites in place (a package's package.xml
+    given the dependencies of the launch file written into it): never refused, put in place after every other
+    file, so never taken back. Returns the written paths in the given order.
     """
     targets = [Path(p) for p in files]
+    updates = {Path(p) for p in update}
     if within is not None:
         check_within(targets, Path(within))
     sweep(t.parent for t in targets)
-    check_free(targets, force)
+    check_free([t for t in targets if t not in updates], force)
     for target in targets:   # a file cannot be put over a folder
         if target.is_dir() and not target.is_symlink():
             raise InputError(f"{target} is a folder", hint="remove it, or choose another output with -o")
@@ -285,17 +289,17 @@ def write_files(files: Mapping[str | Path, FileData], *, force: bool = False,
     journal = None
     target = targets[0] if targets else Path(".")
     try:
-        for key, data in files.items():
+        for key, data in sorted(files.items(), key=lambda item: Path(item[0]) in updates):   # updates last
             target = Path(key)
             made += _make_folders(target.parent)
             staged.append((_temp_beside(target, _as_bytes(data), 0o755 if str(key) in executable else 0o644),
                            target))
         if len(staged) > 1:
-            journal = _commit(staged, force)
+            journal = _commit(staged, force, updates)
         done: list[Path] = []
         for tmp, target in staged:
             try:
-                _move(tmp, target, force)
+                _move(tmp, target, force or target in updates)
             except OutputExistsError:   # another writer took this one first: take back the ones placed
                 for mine in done:
                     os.unlink(mine)
@@ -316,11 +320,13 @@ def write_files(files: Mapping[str | Path, FileData], *, force: bool = False,
     return targets
 
 
-def _commit(staged: list[tuple[Path, Path]], force: bool) -> Path:
-    """Write the journal of ``staged`` moves beside the first target; its rename is the commit point."""
+def _commit(staged: list[tuple[Path, Path]], force: bool, updates=frozenset()) -> Path:
+    """Write the journal of ``staged`` moves beside the first target; its rename is the commit point. A move
+    onto one of ``updates`` replaces what is there (its third field)."""
     first = staged[0][1]
     journal = first.parent / f".{first.name[:80]}.worldgen-journal-{os.getpid()}"
-    text = json.dumps({"force": force, "moves": [[os.path.abspath(t), os.path.abspath(p)] for t, p in staged]})
+    text = json.dumps({"force": force, "moves": [[os.path.abspath(t), os.path.abspath(p)] + ([True] if p in updates
+                                                                                        else []) for t, p in staged]})
     tmp = _temp_beside(first, text.encode("utf-8"), 0o644)
     os.rename(tmp, journal)
     return journal
