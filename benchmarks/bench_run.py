@@ -13,10 +13,9 @@ busy machine slows all alike:
 
 Printed: the medians of wall time, each also as a multiple of the floor's, against the targets (1.5 s for the run
 and 6 s for 8 submissions at ``-j 2``, on a machine whose floor is 0.084 s: 18 and 71 floors). Then the phases of
-one run, timed in this process on the same node (the median of ``--rounds`` runs each): what happens before the
-run (the node's Python, the world, the preflight), the master and the simulator starting together, the node
-starting until it is ready, the simulated seconds, and the ending; and, measured beside the floor, a Python start
-with what a run imports.
+a run of the same node, each run in a fresh process (as a command's: its imports, the node's Python, the master
+and the simulator started, the world and the preflight meanwhile, the master answering, the simulator joining, the
+node starting until it is ready, the simulated seconds, the ending, the report), medians of ``--rounds``.
 
     .venv/bin/python benchmarks/bench_run.py [--rounds N] [--grading]
 """
@@ -24,6 +23,7 @@ with what a run imports.
 from __future__ import annotations
 
 import argparse
+import json
 import shutil
 import statistics
 import subprocess
@@ -36,8 +36,6 @@ REPO = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(REPO))
 ROOM = REPO / "examples" / "enclosed_room.yaml"
 FLOOR = [sys.executable, "-c", "import pybullet, numpy, lxml.etree"]
-IMPORTS = [sys.executable, "-c", "import worldgen.cli, worldgen.cli.transports, worldgen.bridge.single, "
-                                 "worldgen.bridge.world, worldgen.bridge.preflight"]
 FLOOR_THEN = 0.084   # s: the floor on the machine the targets were set on
 TARGETS = {"run": 1.5, "grade -j 2": 6.0}
 SUBMISSIONS = 8
@@ -77,8 +75,10 @@ def measure(commands: dict[str, list[str]], rounds: int) -> dict[str, list[float
     return times
 
 
-def phases(node: Path, rounds: int) -> dict[str, float]:
-    """Median seconds of each phase of an in-process run (see the module docstring)."""
+def one_run_phases(node: Path) -> dict[str, float]:
+    """Seconds of each phase of one run in this (fresh) process, from before its imports (see the module
+    docstring)."""
+    start = time.perf_counter()
     import worldgen.bridge.outcome as outcome
     import worldgen.bridge.supervise as supervise
     import worldgen.ros1.run as run
@@ -87,42 +87,50 @@ def phases(node: Path, rounds: int) -> dict[str, float]:
     from worldgen.bridge.single import run_single
     from worldgen.cli.transports import transport_for
 
-    marks: list[tuple[str, float]] = []
+    marks: list[tuple[str, float]] = [("imports", time.perf_counter())]
 
-    def wrap(owner, name: str, label: str) -> None:
+    def wrap(owner, name: str, label: str, at_entry: bool = False) -> None:
+        """A mark labelled ``label`` when ``owner.name`` returns (or, ``at_entry``, when it is called)."""
         names = [n for n in name.split("|") if hasattr(owner, n)]   # the first found (an older run's names too)
         if not names:
             return
-        name = names[0]
-        original = getattr(owner, name)
+        original = getattr(owner, names[0])
 
         def timed_call(*args, **kwargs):
+            if at_entry:
+                marks.append((label, time.perf_counter()))
             try:
                 return original(*args, **kwargs)
             finally:
-                marks.append((label, time.perf_counter()))
-        setattr(owner, name, timed_call)
+                if not at_entry:
+                    marks.append((label, time.perf_counter()))
+        setattr(owner, names[0], timed_call)
 
     wrap(transport.Ros1, "node_python", "the node's Python")
-    wrap(run, "find_rospy|import_rospy", "the world, the node, its preflight")
-    wrap(run, "start_master", "the master and the simulator starting")
+    wrap(run, "launch_master|import_rospy", "the master starting (not waited for)")
+    wrap(run, "_run|start_master", "the world, the node, its preflight", at_entry=True)
+    wrap(run, "await_master", "the master answering")
     wrap(run, "_wait_for_simulator", "the simulator joining")
     wrap(run, "wait_until_ready|_wait_for_nodes", "the node starting until ready")
     wrap(outcome, "wait_for_end", "the simulated seconds")
     wrap(supervise.Supervisor, "__exit__", "the ending")
-    ros = transport_for("noetic")
+    run_single(ROOM, [str(node)], RunRequest(task="stop-at-wall", rate=0.0), Outputs(), transport_for("noetic"))
+    marks.append(("the report", time.perf_counter()))
+    spent, previous = {}, start
+    for label, at in marks:
+        spent[label], previous = at - previous, at
+    spent["in all"] = previous - start
+    return spent
+
+
+def phases(node: Path, rounds: int) -> dict[str, float]:
+    """Median seconds of each phase of a run, each run in a fresh process (a command's first imports too)."""
     found: dict[str, list[float]] = {}
     for _ in range(rounds):
-        marks.clear()
-        start = time.perf_counter()
-        run_single(ROOM, [str(node)], RunRequest(task="stop-at-wall", rate=0.0), Outputs(), ros)
-        end = time.perf_counter()
-        previous = start
-        for label, at in marks:
-            found.setdefault(label, []).append(at - previous)
-            previous = at
-        found.setdefault("the report", []).append(end - previous)
-        found.setdefault("in all", []).append(end - start)
+        out = subprocess.run([sys.executable, __file__, "--phases-of", str(node)], capture_output=True, text=True,
+                             cwd=REPO, check=True).stdout
+        for label, seconds in json.loads(out.splitlines()[-1]).items():
+            found.setdefault(label, []).append(seconds)
     return {label: statistics.median(values) for label, values in found.items()}
 
 
@@ -130,12 +138,16 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--rounds", type=int, default=5)
     parser.add_argument("--grading", action="store_true", help="also grade a folder of 8 submissions at -j 1, -j 2")
+    parser.add_argument("--phases-of", type=Path, help=argparse.SUPPRESS)   # one run's phases, in a child
     args = parser.parse_args()
+    if args.phases_of is not None:
+        print(json.dumps(one_run_phases(args.phases_of)))
+        return
     worldgen = [sys.executable, "-m", "worldgen", "run"]
     with tempfile.TemporaryDirectory(prefix="bench_run_") as tmp_name:
         tmp = Path(tmp_name)
         node = course_node(tmp)
-        commands = {"floor": FLOOR, "imports": IMPORTS,
+        commands = {"floor": FLOOR,
                     "run": worldgen + [str(ROOM), str(node), "--task", "stop-at-wall", "--rate", "max"]}
         if args.grading:
             folder = class_folder(tmp, node)
@@ -157,13 +169,9 @@ def main() -> None:
                          f"{'met' if median / floor <= allowed else 'NOT met'}")
             print(line)
         spent = phases(node, args.rounds)
-        print(f"\nphases of one run (in this process, median of {args.rounds}):")
+        print(f"\nphases of one run (each in a fresh process after Python's start, median of {args.rounds}):")
         for label, seconds in spent.items():
-            if label != "in all":
-                print(f"  {label:<40} {seconds:6.3f} s")
-        print(f"  {'in all':<40} {spent['in all']:6.3f} s")
-        print(f"  {'and before, in a command: its imports':<40} {statistics.median(times['imports']):6.3f} s "
-              f"(python start and what a run imports, measured with the floor)")
+            print(f"  {label:<40} {seconds:6.3f} s")
 
 
 if __name__ == "__main__":

@@ -16,14 +16,21 @@ from .world import graded_robot, load_world
 
 
 def run_single(world_path: Path, node_args, request: RunRequest, outputs: Outputs, transport: Transport):
-    """Check everything (exit-2 errors before anything starts; then every node's imports, a failed result
-    without starting anything when some are missing: see :mod:`.preflight`), run, write the files; returns the
+    """Check everything (exit-2 errors before any node starts; then every node's imports, a failed result
+    without starting any node when some are missing: see :mod:`.preflight`), run, write the files; returns the
     :class:`~worldgen.check.report.Result` and the report text. ``outputs.html``: the replay page's file, made by
     ``outputs.html_page(result, world, trace)`` (the command line's, from :mod:`worldgen.view`; the bridge draws
     nothing itself), with every scan recorded for it."""
     o = outputs
     check_free([p for p in (o.junit, o.plot, o.csv, o.bag, o.html) if p is not None], o.force)
     python = transport.node_python()
+    with transport.head_start() as head:   # the master's and simulator's starts, while the rest is read
+        return _checked_run(world_path, node_args, request, o, transport, python, head)
+
+
+def _checked_run(world_path: Path, node_args, request: RunRequest, o: Outputs, transport: Transport, python: str,
+                 head):
+    """:func:`run_single` once the node's Python is known, in ``head`` (see :meth:`.Transport.head_start`)."""
     world = load_world(world_path, spawn=request.spawn, robot=request.robot, launch=request.launch)
     search = [world_path.parent] if world_path.is_file() else []
     nodes = transport.resolve_nodes(list(node_args), python, search)
@@ -40,7 +47,7 @@ def run_single(world_path: Path, node_args, request: RunRequest, outputs: Output
         bag_tmp = Path(o.bag).with_name(f".{Path(o.bag).name}.part")
         options.bag = bag_tmp.resolve()
     try:
-        outcome = transport.run_nodes(world, nodes, options)
+        outcome = transport.run_nodes(world, nodes, options, head=head)
         result = result_of(str(world_path), world, outcome, request.task, request.target)
         files = {}
         if o.plot is not None:

@@ -4,6 +4,7 @@
 
 from __future__ import annotations
 
+import contextlib
 from pathlib import Path
 from typing import Sequence
 
@@ -32,5 +33,10 @@ class Transport:
     def resolve_nodes(self, items: Sequence[str], python: str, search: Sequence[str | Path] = ()) -> list[NodeSpec]:
         raise NotImplementedError
 
-    def run_nodes(self, world: World, nodes: list[NodeSpec], options: RunOptions) -> Outcome:
+    def head_start(self):
+        """A context manager: what a run may start before its world and nodes are known (its processes' Python
+        starts and imports), handed to :meth:`run_nodes` as ``head`` (None: nothing). Nothing by default."""
+        return contextlib.nullcontext()
+
+    def run_nodes(self, world: World, nodes: list[NodeSpec], options: RunOptions, head=None) -> Outcome:
         raise NotImplementedError

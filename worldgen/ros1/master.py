@@ -104,6 +104,16 @@ def start_master(supervisor: Supervisor, port: int | None, env: dict[str, str], 
     for until it answers; returns the child and its URI. InputError when the port is taken or the master does not
     come up. ``meanwhile(uri)`` is called once the master is started, before waiting for it (what can start beside
     it)."""
+    child, uri = launch_master(supervisor, port, env, log)
+    if meanwhile is not None:
+        meanwhile(uri)
+    await_master(supervisor, child, uri)
+    return child, uri
+
+
+def launch_master(supervisor: Supervisor, port: int | None, env: dict[str, str], log: Path | None = None
+                  ) -> tuple[Child, str]:
+    """The first half of :func:`start_master`: the master started, not waited for."""
     command = rosmaster_command()
     if port is None:
         port = free_port()
@@ -113,8 +123,12 @@ def start_master(supervisor: Supervisor, port: int | None, env: dict[str, str], 
     uri = f"http://127.0.0.1:{port}"
     child = supervisor.start("rosmaster", master_argv(command, port), dict(env, ROS_MASTER_URI=uri), log=log,
                              last=True)
-    if meanwhile is not None:
-        meanwhile(uri)
+    return child, uri
+
+
+def await_master(supervisor: Supervisor, child: Child, uri: str) -> None:
+    """The second half of :func:`start_master`: until the master ``child`` answers at ``uri``."""
+    port = uri.rsplit(":", 1)[1]
     deadline = time.monotonic() + START_TIMEOUT
     while time.monotonic() < deadline:
         if not child.running:
@@ -125,7 +139,7 @@ def start_master(supervisor: Supervisor, port: int | None, env: dict[str, str], 
                 supervisor.stop(child)
                 raise InputError(f"rosmaster could not start on port {port}: another master answers there",
                                  hint="set ROS_MASTER_URI to a free port")
-            return child, uri
+            return
         time.sleep(0.01)
     supervisor.stop(child)
     raise InputError(f"rosmaster did not answer on port {port} within {START_TIMEOUT:g} s")

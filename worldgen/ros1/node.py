@@ -290,6 +290,17 @@ def join_master(rospy) -> None:
             init_impl.time = real
 
 
+def wait_for_file(path: Path) -> bool:
+    """Until ``path`` exists (``worldgen run`` starts the simulator before it has read the world, and writes its
+    config whole once it has); False when a stop signal comes first or after :data:`START_WAIT`."""
+    deadline = time.monotonic() + START_WAIT
+    while not path.exists():
+        if pending_interrupt() or time.monotonic() > deadline:
+            return False
+        time.sleep(0.005)
+    return True
+
+
 def wait_for_master(param: str, token: str) -> bool:
     """Until the master (``ROS_MASTER_URI``) holds ``token`` in ``param``: it is up and the run's parameters are
     set (the simulator starts beside the master, see :mod:`.run`). False when a stop signal comes first (held
@@ -327,6 +338,8 @@ def main(argv: list[str]) -> int:
     gazebo_msgs (a folder to import gazebo_msgs from, or null), record_scans (bool: every robot's trace gets
     ``lidar`` and every published scan under ``ranges``, see :meth:`.RobotTopics.publish_scan`)."""
     keep_freed_memory()
+    if not wait_for_file(Path(argv[0])):
+        return 0   # stopped, or no config, before the run began: nothing to write
     config = json.loads(Path(argv[0]).read_text(encoding="utf-8"))
     if config.get("gazebo_msgs"):
         sys.path.insert(0, config["gazebo_msgs"])

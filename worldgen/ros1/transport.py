@@ -16,7 +16,7 @@ from ..core.errors import WorldgenError
 from ..runtime.naming import Naming
 from .nodes import resolve_nodes
 from .rosenv import ENV_PYTHON, SYSTEM_PYTHON, distro_package, find_rospy, node_python
-from .run import run_nodes
+from .run import head_start, run_nodes
 
 
 class Ros1(Transport):
@@ -34,8 +34,11 @@ class Ros1(Transport):
     def resolve_nodes(self, items: Sequence[str], python: str, search: Sequence[str | Path] = ()) -> list[NodeSpec]:
         return resolve_nodes(items, python, search)
 
-    def run_nodes(self, world: World, nodes: list[NodeSpec], options: RunOptions) -> Outcome:
-        return run_nodes(world, nodes, options)
+    def head_start(self):
+        return head_start()
+
+    def run_nodes(self, world: World, nodes: list[NodeSpec], options: RunOptions, head=None) -> Outcome:
+        return run_nodes(world, nodes, options, head=head)
 
 
 ROS1 = Ros1()

@@ -30,5 +30,5 @@ class Ros2(Transport):
     def resolve_nodes(self, items: Sequence[str], python: str, search: Sequence[str | Path] = ()) -> list[NodeSpec]:
         return resolve_nodes(items, python, search)
 
-    def run_nodes(self, world: World, nodes: list[NodeSpec], options: RunOptions) -> Outcome:
+    def run_nodes(self, world: World, nodes: list[NodeSpec], options: RunOptions, head=None) -> Outcome:
         return run_nodes(world, nodes, options, self.stack, self.cmd_vel)
