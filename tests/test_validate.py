@@ -552,9 +552,9 @@ def test_a_spec_is_checked_as_the_world_it_builds(libsdformat, tmp_path, monkeyp
 
     spec = tmp_path / "room.yaml"
     spec.write_text((EXAMPLES / "enclosed_room.yaml").read_text(encoding="utf-8"), encoding="utf-8")
-    built = writer.spec_world_sdf
-    monkeypatch.setattr(writer, "spec_world_sdf",   # a wall box of two numbers
-                        lambda s: re.sub(r"<box>\s*<size>[^<]*</size>", "<box><size>1 2</size>", built(s), count=1))
+    built = writer.world_sdf   # validate builds the spec's geometry once, and its world text from that
+    monkeypatch.setattr(writer, "world_sdf",   # a wall box of two numbers
+                        lambda b: re.sub(r"<box>\s*<size>[^<]*</size>", "<box><size>1 2</size>", built(b), count=1))
     [job] = plan([spec], Options(sdformat=True, skip_sim=True))
     [result] = run_job(job, Options(sdformat=True, skip_sim=True))
     [error] = [f for f in result.findings if f.check == "sdformat"]

@@ -48,7 +48,7 @@ def test_a_spec_past_the_budget_is_refused_before_it_is_built(tmp_path, monkeypa
     shapes = budget.spec_shapes(load_spec(spec))
     monkeypatch.setattr(budget, "MAX_SHAPES", shapes - 1)
     built = []
-    monkeypatch.setattr("worldgen.sdf.writer.spec_world_sdf", lambda *a, **k: built.append(a))
+    monkeypatch.setattr("worldgen.geometry.building.build_geometry", lambda *a, **k: built.append(a))
     done = CliRunner().invoke(main, ["validate", str(spec)])
     assert done.exit_code == 2 and built == []
     [line] = done.stderr.strip().splitlines()

@@ -67,18 +67,23 @@ def wall_sides(spec, building=None) -> Dict[int, list]:
     building = building if building is not None else build_geometry(spec)
     sides = _spec_sides(spec)
     tree = shapely.STRtree([shapely.LineString([p, q]) for _, p, q in sides])
+    straight = [w for w in building.walls if not w.filler]
+    zones = shapely.buffer(shapely.linestrings([[w.start, w.end] for w in straight]), 2 * ON_LINE, quad_segs=1) \
+        if straight else []
+    near: Dict[int, list] = {}
+    for k, i in zip(*tree.query(zones)) if len(zones) else ():   # every wall's nearby sides in one query
+        near.setdefault(int(k), []).append(int(i))
     found: Dict[int, list] = {}
+    for k, wall in enumerate(straight):
+        on = [sides[i] for i in sorted(near.get(k, ())) if _on_wall(wall, sides[i][1], sides[i][2])]
+        if on:
+            found[wall.index] = on
     for wall in building.walls:
         if wall.filler:
             rooms = " and ".join(f"'{r}'" for r in wall.rooms)
             found[wall.index] = [(f"the filler at a sharp corner of room {rooms}" if rooms else "a corner filler",
                                   None, None)]
-            continue
-        near = tree.query(shapely.LineString([wall.start, wall.end]).buffer(2 * ON_LINE, quad_segs=1))
-        on = [sides[i] for i in sorted(int(i) for i in near) if _on_wall(wall, sides[i][1], sides[i][2])]
-        if on:
-            found[wall.index] = on
-    return found
+    return dict(sorted(found.items()))
 
 
 def _along(p, q, point) -> float:

@@ -358,23 +358,26 @@ def run_job(job: Job, options: Options) -> list[Result]:
     if job.spec is not None:
         if job.floorplan is None:
             return [_skip_rest(result, "the spec cannot be read", options)]
-        from ..sdf.writer import spec_world_sdf
+        from ..geometry.building import build_geometry
+        from ..sdf.writer import world_sdf
 
         try:
-            source = WorldSource(job.spec.with_suffix(".world"), spec_world_sdf(job.floorplan))
+            building = build_geometry(job.floorplan)   # once: the world's text, then the spec's names and checks
+            source = WorldSource(job.spec.with_suffix(".world"), world_sdf(building))
         except SpecError as err:
             result.checks.append("parse")
             result.findings.append(_parse_error(err, job.spec))
             return [_skip_rest(result, "the spec cannot be built", options)]
-        return _named(_run_world(result, source, options), job)
+        return _named(_run_world(result, source, options), job, building)
     if job.world is None:
         return [_skip_rest(result, "no world to read", options)]
     return _named(_run_world(result, WorldSource(job.world), options), job)
 
 
-def _named(results: list[Result], job: Job) -> list[Result]:
+def _named(results: list[Result], job: Job, building=None) -> list[Result]:
     """Findings about a world built from a spec speak of the spec's rooms and walls (and its own checks of the
-    spec are added): :mod:`worldgen.check.spec_names`, :mod:`worldgen.check.spec_lint`."""
+    spec are added): :mod:`worldgen.check.spec_names`, :mod:`worldgen.check.spec_lint`; ``building``: the
+    spec's geometry, when built already."""
     spec = job.floorplan if job.floorplan is not None else job.names_from
     if spec is None:
         return results
@@ -383,7 +386,7 @@ def _named(results: list[Result], job: Job) -> list[Result]:
     from .spec_names import rename_findings, wall_sides
 
     try:
-        building = build_geometry(spec)
+        building = build_geometry(spec) if building is None else building
     except SpecError:   # a spec beside a world that no longer builds: nothing to name
         return results
     sides = wall_sides(spec, building)

@@ -59,10 +59,11 @@ def _convex_section(points, z: float):
     return hull if hull.geom_type == "Polygon" and hull.area > 0 else None
 
 
-def _box_section(shape: Shape, z: float, fast: bool = False):
+def _box_section(shape: Shape, z: float, fast: bool = False, upright=None):
     """A box's section: the convex section; or, ``fast``, when one of its axes stands upright (most walls), its
-    rectangle between bottom and top (the same region, without the general computation)."""
-    upright = _upright_box(shape) if fast else None
+    rectangle between bottom and top (the same region, without the general computation; ``upright``: that, when
+    known)."""
+    upright = upright if upright is not None else (_upright_box(shape) if fast else None)
     if upright is not None and upright[0] < z < upright[1]:
         return upright[2]
     if upright is not None and not upright[0] <= z <= upright[1]:
@@ -130,10 +131,11 @@ def _mesh_section(shape: Shape, z: float):
     return mesh_footprint(shape, _to_world(shape, shape.vertices), z, SLIVER)
 
 
-def section(shape: Shape, z: float, fast: bool = False):
-    """The 2-D footprint (shapely geometry, world x/y) of ``shape`` cut by the plane at height ``z``, or None."""
+def section(shape: Shape, z: float, fast: bool = False, upright=None):
+    """The 2-D footprint (shapely geometry, world x/y) of ``shape`` cut by the plane at height ``z``, or None
+    (``upright``: a box's :func:`_upright_box`, when known)."""
     if shape.kind == "box" and shape.size is not None:
-        return _box_section(shape, z, fast)
+        return _box_section(shape, z, fast, upright)
     if shape.kind == "cylinder" and shape.radius and shape.length:
         return _cylinder_section(shape, z)
     if shape.kind == "sphere" and shape.radius:
@@ -149,12 +151,21 @@ def footprints(scene: Scene, z: float) -> list[Footprint]:
     return list(remembered(scene, ("footprints", z), lambda: _footprints(scene, z)))
 
 
+def _uprights(scene: Scene, shapes: list[Shape]) -> list:
+    """:func:`_upright_box` of each of ``shapes`` (the scene's obstacles; None for all but boxes), once per scene:
+    the cut at the LiDAR's height and the robot's bands share them."""
+    return remembered(scene, "upright boxes", lambda: [
+        _upright_box(s) if s.kind == "box" and s.size is not None else None for s in shapes])
+
+
 def _footprints(scene: Scene, z: float) -> list[Footprint]:
     out = []
     shapes = scene.obstacles()
     fast = len(shapes) > FAST_BOXES
-    for shape in shapes:
-        geometry, note = _mesh_section(shape, z) if shape.kind == "mesh" else (section(shape, z, fast), None)
+    uprights = _uprights(scene, shapes) if fast else [None] * len(shapes)
+    for shape, upright in zip(shapes, uprights):
+        geometry, note = (_mesh_section(shape, z) if shape.kind == "mesh" else
+                          (section(shape, z, fast, upright), None))
         if geometry is not None and not geometry.is_empty:
             out.append(Footprint(shape.label, geometry, note))
     return out
@@ -176,8 +187,7 @@ def _footprints_between(scene: Scene, z0: float, z1: float, steps: int, also: tu
     out = []
     shapes = scene.obstacles()
     fast = len(shapes) > FAST_BOXES
-    for shape in shapes:
-        upright = _upright_box(shape) if fast and shape.kind == "box" and shape.size is not None else None
+    for shape, upright in zip(shapes, _uprights(scene, shapes) if fast else [None] * len(shapes)):
         if upright is not None and any(upright[0] < z < upright[1] for z in heights):
             out.append(Footprint(shape.label, upright[2]))   # its sections at the other heights: the same, or none
             continue
