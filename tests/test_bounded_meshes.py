@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from click.testing import CliRunner
+from conftest import CliRunner
 
 from worldgen.cli import main
 from worldgen.sdf.meshes import MAX_MESH_TRIANGLES, MAX_WORLD_TRIANGLES, triangles_in_file

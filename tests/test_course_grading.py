@@ -10,7 +10,7 @@ import shutil
 from pathlib import Path
 
 import pytest
-from click.testing import CliRunner
+from conftest import CliRunner
 
 from worldgen.bridge.grade import depended_packages, submissions
 from worldgen.cli import main

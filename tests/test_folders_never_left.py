@@ -6,7 +6,7 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
-from click.testing import CliRunner
+from conftest import CliRunner
 
 from worldgen.bridge.grade import submissions
 from worldgen.check.discover import search_folder

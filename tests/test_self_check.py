@@ -12,7 +12,7 @@ import re
 from pathlib import Path
 
 import pytest
-from click.testing import CliRunner
+from conftest import CliRunner
 
 from worldgen.cli import main
 

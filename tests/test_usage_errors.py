@@ -7,7 +7,7 @@ import subprocess
 import sys
 
 import pytest
-from click.testing import CliRunner
+from conftest import CliRunner
 
 from worldgen.cli import main
 
@@ -42,9 +42,9 @@ def test_usage_error_of_the_installed_command():
                           stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, timeout=60)
     assert done.returncode == 2
     assert done.stdout == ""
-    assert done.stderr.splitlines() == [
-        "worldgen: error: No such option '--skip-simm'. Did you mean '--skip-sim'? "
-        "(see 'worldgen validate --help')"]
+    [line] = done.stderr.splitlines()   # click 8.1 (Python 3.8) words it "No such option: --skip-simm Did you …"
+    assert line.startswith("worldgen: error: No such option") and line.endswith("(see 'worldgen validate --help')")
+    assert "--skip-simm" in line and "Did you mean" in line and line.count("--skip-sim") == 2
 
 
 def test_help_is_still_help():
