@@ -2,13 +2,15 @@
 ``worldgen sim``: SIGTERM and SIGHUP become KeyboardInterrupt like Ctrl-C; they are held while the simulator starts
 (a KeyboardInterrupt raised inside an import's clean-up callback is printed as "Exception ignored" and lost) and
 delivered once its loop can handle them; and once it is writing its trace, a second signal must not cut that short.
-Only a simulator process's own ``__main__`` calls :func:`run_main`, so no other process's handlers change."""
+Only a simulator process's own ``__main__`` calls :func:`simulator_main`, so no other process's handlers change."""
 
 from __future__ import annotations
 
 import signal
 import sys
 from typing import Callable
+
+from ..sim.quiet import import_pybullet
 
 STOP_SIGNALS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
 
@@ -46,3 +48,13 @@ def run_main(main: Callable[[list], int]) -> None:
         sys.exit(main(sys.argv[1:]))
     except KeyboardInterrupt:
         sys.exit(0)
+
+
+def simulator_main(load: Callable[[], Callable[[list], int]]) -> None:
+    """A simulator process's whole life (``python -m worldgen.ros1`` or ``ros2``): the stop signals held from the
+    start (a Ctrl-C while it imports would print a KeyboardInterrupt traceback from deep in an import, and be lost),
+    pybullet imported with its greeting silenced (``worldgen sim`` shares its terminal), then ``load()``'s main run
+    by :func:`run_main`, which delivers the held signals where the node handles them."""
+    signal.pthread_sigmask(signal.SIG_BLOCK, set(STOP_SIGNALS))
+    import_pybullet()
+    run_main(load())

@@ -1,17 +1,13 @@
-"""``python -m worldgen.ros1 CONFIG.json``: the simulator process (:mod:`.node`). The stop signals are held from
-its first line (a Ctrl-C while it imports would print a KeyboardInterrupt traceback from deep in an import, and be
-lost), pybullet is imported with its greeting silenced (:mod:`worldgen.sim.quiet`: ``worldgen sim`` shares its
-terminal), then :func:`worldgen.interface.signals.run_main` delivers the held signals where the node handles them."""
+"""``python -m worldgen.ros1 CONFIG.json``: the simulator process (:mod:`.node`), started by
+:func:`worldgen.interface.signals.simulator_main` (stop signals held, pybullet quiet) before the node's imports."""
 
-import signal
+from ..interface.signals import simulator_main
 
-signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT, signal.SIGTERM, signal.SIGHUP})
 
-from ..sim.quiet import import_pybullet  # noqa: E402  (after the signals are held, on purpose)
+def _node_main():
+    from .node import main   # after the signals are held and pybullet imported quietly: see simulator_main
 
-import_pybullet()
+    return main
 
-from ..interface.signals import run_main  # noqa: E402
-from .node import main  # noqa: E402
 
-run_main(main)
+simulator_main(_node_main)
