@@ -1,7 +1,8 @@
 """Simulated time as a node sees it: at ``--rate max`` /clock goes out only as often as a node can tell (a 60 Hz
-lattice and before each message), and a node's ``rospy.Rate`` loops (10 Hz and 30 Hz) and ``rospy.sleep`` still
-wake exactly when they ask to: each deadline is a /clock value, never one passed over; at a paced rate every other
-physics step (120 Hz) as Gazebo's plugins see it.
+lattice and before each message, each clock taken in before the next), and a node's ``rospy.Rate`` loops (10 Hz
+and 30 Hz) and ``rospy.sleep`` still wake exactly when they ask to: each deadline is a /clock value, never one
+passed over, and the loop reads that time on waking; at a paced rate every other physics step (120 Hz) as
+Gazebo's plugins see it.
 
 Real rosmaster and rospy (Debian's); the node is tests/rosnodes/rate_loops.py.
 """
@@ -48,7 +49,7 @@ def test_rate_and_sleep_loops_wake_at_their_deadlines(tag, tmp_path, rate, per_s
     assert heard > DURATION * NS / 2
     ticks = [c for c in clocks if c > 0]
     assert len(ticks) == pytest.approx(heard / NS * per_second, abs=2), ticks[:10]   # 60 Hz at max, 120 Hz paced
-    for name, period in (("rate10", NS // 10), ("rate30", NS // 30), ("sleep0.25", NS // 4)):
+    for name in ("rate10", "rate30", "sleep0.25"):
         pairs = loops[name]
         assert len(pairs) >= 5, name   # it ran (one that falls behind skips deadlines, as rospy.Rate does)
         assert all(woke >= deadline for deadline, woke in pairs), name   # never early
@@ -58,5 +59,11 @@ def test_rate_and_sleep_loops_wake_at_their_deadlines(tag, tmp_path, rate, per_s
                 # that rospy's Duration(1/30) sheds each period), so a node that keeps up wakes when it asked to
                 tick = first_clock_at_or_after(clocks, deadline)
                 assert tick - deadline < 1000, (name, deadline, tick)
+        if rate == "max":
+            # and they do: after the first (from time 0 rospy waits for a clock, then sleeps the period), each
+            # wake reads its deadline's time, each clock waiting for the node to take it in (at a paced rate the
+            # clock keeps its pace whatever the node does; a loaded machine may leave a few wakes behind)
+            exact = [woke - deadline < 1000 for deadline, woke in pairs[1:]]
+            assert sum(exact) >= 0.9 * len(exact), (name, pairs)
     rate10 = [d for d, _ in loops["rate10"]]
     assert rate10[:5] == [k * NS // 10 for k in range(1, 6)]   # made at time 0: its own lattice

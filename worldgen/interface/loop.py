@@ -17,7 +17,9 @@ any rate dividing 60 Hz (1, 2, 3, 4, 5, 6, 10, 12, 15, 20, 30, 60 Hz) wake exact
 every other step, and before every other message: at each drive update and scan (whose callbacks then read the
 time of the message), and every other step while some node listens to the IMU. A node can only learn the time
 from ``/clock``, when a message comes or when it wakes, and it wakes on the first ``/clock`` at or past its
-deadline; between those it cannot tell whether the clock went out.
+deadline; between those it cannot tell whether the clock went out. And each /clock waits, a little, for the nodes
+to take it in (:class:`.pacing.Followers`), so that a loop it wakes runs at that simulated time, not at a later one
+the simulator has run on to meanwhile.
 
 The transport's simulator object (a :class:`Wire`) publishes; this module only decides when.
 """
@@ -26,7 +28,7 @@ from __future__ import annotations
 
 import time
 
-from .pacing import Backlog, Governor
+from .pacing import Backlog, Followers, Governor
 
 CLOCK_EVERY = 2          # physics steps per /clock and /imu message
 MAX_CLOCK_EVERY = 4      # physics steps per /clock at rate max, unless a message goes out between (see above)
@@ -90,19 +92,23 @@ def run_loop(wire: Wire, rate: float, duration: float | None, pids=(), *, udp: b
     wire.publish_clock()
     wire.publish_drive()
     backlog = Backlog(list(pids), udp=udp) if rate <= 0 and pids else None
+    followers = Followers(pids, skip=[backlog.thread.native_id]) if backlog is not None else None
     try:
-        _step_loop(wire, rate, end_step, backlog)
+        _step_loop(wire, rate, end_step, backlog, followers)
     except KeyboardInterrupt:
         interrupted = True
     finally:
         if backlog is not None:
             backlog.stop()
+        if followers is not None:
+            followers.close()
     wall = time.monotonic() - wall0
     return {"sim_time_s": s.t, "wall_time_s": wall, "real_time_factor": s.t / wall if wall > 0 else None,
             "interrupted": interrupted}
 
 
-def _step_loop(wire: Wire, rate: float, end_step: int | None, backlog: Backlog | None) -> None:
+def _step_loop(wire: Wire, rate: float, end_step: int | None, backlog: Backlog | None,
+               followers: Followers | None) -> None:
     s = wire.session
     dt = s.time_step
     drive_every = s._update_every
@@ -126,6 +132,8 @@ def _step_loop(wire: Wire, rate: float, end_step: int | None, backlog: Backlog |
         step += 1
         if step % clock_every == 0 or sparse and _message_due(wire, step, drive_every, scan_every):
             wire.publish_clock()
+            if followers is not None:
+                followers.wait()
         if step % CLOCK_EVERY == 0:
             wire.publish_fast(dt * CLOCK_EVERY)
             governor.pace(s.t)

@@ -1,6 +1,6 @@
 """How fast simulated time runs: at a fixed multiple of real time, or, at ``--rate max``, as fast as the nodes
 under test keep up (:class:`Governor`), judged by the bytes of messages waiting unread in their sockets
-(:class:`Backlog`).
+(:class:`Backlog`) and, clock by clock, by whether they have taken the last one in (:class:`Followers`).
 
 Those bytes are read from the kernel's socket tables (/proc/net/tcp), which costs the kernel a walk of every TCP
 socket of the machine: about 5 ms per table on a busy machine, whether the nodes have two sockets or twenty.
@@ -103,3 +103,87 @@ class Governor:
             ahead = self.anchor_wall + (sim_t - self.anchor_sim) / self.limit - now
             if ahead > 0.0005:
                 time.sleep(ahead)
+
+
+FOLLOW_WAIT = 0.002      # s of real time a /clock waits at most for the nodes to take it in
+STRIKES = 5              # a thread still running after that many such waits in a row is not waited for
+LOOK_THREADS = 0.25      # s of real time between looks for new threads
+
+
+class Followers:
+    """At ``--rate max``, each /clock waits for the nodes to take it in: until no thread of theirs (``pids``), nor
+    any of the simulator's own but the stepping one and ``skip`` (their native ids), is running or about to
+    (state R in ``/proc/PID/task/TID/stat``): the clock's reader is done, a loop it woke (``rospy.Rate``,
+    ``rospy.sleep``, a timer) has run and published, and the simulator has taken what it published.
+
+    Without it a node's loop wakes when its thread gets the processor, by which time the simulator may have run
+    several clocks on (rospy keeps only the latest of the clocks waiting): it then acts at a later simulated time
+    than in Gazebo, more often the busier the machine. A wait lasts at most :data:`FOLLOW_WAIT`; a thread that is
+    still running after :data:`STRIKES` waits in a row (a busy loop) is not waited for until it is seen resting.
+    Each look reads a few hundred bytes per thread from files kept open (about 4 µs a thread)."""
+
+    def __init__(self, pids, skip=()):
+        self.pids = [int(p) for p in pids]
+        self.own = os.getpid()
+        self.skip = {threading.get_native_id(), *skip}
+        self.files: dict[tuple[int, int], int] = {}
+        self.strikes: dict[tuple[int, int], int] = {}
+        self.looked = 0.0
+
+    def _look_for_threads(self) -> None:
+        now = time.monotonic()
+        if now - self.looked < LOOK_THREADS:
+            return
+        self.looked = now
+        seen = set()
+        for pid in self.pids + [self.own]:
+            try:
+                tids = [int(t) for t in os.listdir(f"/proc/{pid}/task")]
+            except OSError:
+                continue
+            for tid in tids:
+                if pid == self.own and tid in self.skip:
+                    continue
+                seen.add((pid, tid))
+                if (pid, tid) not in self.files:
+                    try:
+                        self.files[(pid, tid)] = os.open(f"/proc/{pid}/task/{tid}/stat", os.O_RDONLY)
+                    except OSError:
+                        pass
+        for key in set(self.files) - seen:
+            os.close(self.files.pop(key))
+            self.strikes.pop(key, None)
+
+    def _running(self) -> list[tuple[int, int]]:
+        """The threads running or runnable now, but those struck out (whose strikes reset when seen resting)."""
+        found = []
+        for key, fd in self.files.items():
+            try:
+                data = os.pread(fd, 512, 0)
+            except OSError:
+                continue
+            end = data.rfind(b")")
+            if end > 0 and data[end + 2:end + 3] == b"R":
+                if self.strikes.get(key, 0) < STRIKES:
+                    found.append(key)
+            else:
+                self.strikes.pop(key, None)
+        return found
+
+    def wait(self) -> None:
+        """Until the nodes have taken the clock just published in (see the class docstring)."""
+        self._look_for_threads()
+        deadline = time.monotonic() + FOLLOW_WAIT
+        running = self._running()
+        while running:
+            if time.monotonic() > deadline:
+                for key in running:
+                    self.strikes[key] = self.strikes.get(key, 0) + 1
+                return
+            time.sleep(0.00005)
+            running = self._running()
+
+    def close(self) -> None:
+        for fd in self.files.values():
+            os.close(fd)
+        self.files.clear()

@@ -44,6 +44,8 @@ from .typehash import type_hash
 
 START_WAIT = 30.0        # s of real time to wait for the start
 SETTLE = 0.2             # s of real time after the nodes' endpoints first match, at most, for the rest to match
+MATCHED_BOTH = 0.05      # s at least: a match the simulator sees may not yet be one the node sees (DDS matches
+                         # each side on its own)
 LOOK_EVERY = 0.25        # s of real time between looks at the others' endpoints
 
 
@@ -373,7 +375,8 @@ def wait_for_start(wire: DdsWire, watcher: Watcher, config: dict) -> None:
     """Hold simulated time at 0 (publishing /clock) until the start file exists, or until ``expect`` other
     participants are there, some endpoint of theirs matches the robot's, and they are ready: the matches the same
     as at the previous look, some node driving the graded robot and reading what the task (``task``) needs
-    (:data:`worldgen.interface.topics.TASK_INPUTS`); or :data:`SETTLE` after the first match."""
+    (:data:`worldgen.interface.topics.TASK_INPUTS`), :data:`MATCHED_BOTH` after the first match at least; or
+    :data:`SETTLE` after it."""
     start_file, expect = config.get("start_file"), int(config.get("expect") or 0)
     if not start_file and not expect:   # worldgen sim: at once
         return
@@ -391,7 +394,8 @@ def wait_for_start(wire: DdsWire, watcher: Watcher, config: dict) -> None:
         if expect and len(watcher.others) >= expect and matched(wire):
             seen = seen or now
             state, previous = previous, matches(wire)
-            if now - seen >= SETTLE or (state == previous and does_the_task(wire, need)):
+            if now - seen >= SETTLE or (now - seen >= MATCHED_BOTH and state == previous and
+                                         does_the_task(wire, need)):
                 return
         time.sleep(0.005)
 
