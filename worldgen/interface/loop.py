@@ -17,9 +17,10 @@ any rate dividing 60 Hz (1, 2, 3, 4, 5, 6, 10, 12, 15, 20, 30, 60 Hz) wake exact
 every other step, and before every other message: at each drive update and scan (whose callbacks then read the
 time of the message), and every other step while some node listens to the IMU. A node can only learn the time
 from ``/clock``, when a message comes or when it wakes, and it wakes on the first ``/clock`` at or past its
-deadline; between those it cannot tell whether the clock went out. And each /clock waits, a little, for the nodes
+deadline; between those it cannot tell whether the clock went out. And a /clock waits, a little, for the nodes
 to take it in (:class:`.pacing.Followers`), so that a loop it wakes runs at that simulated time, not at a later one
-the simulator has run on to meanwhile.
+the simulator has run on to meanwhile: every clock while the nodes may act on their own time, none once they have
+shown they only answer scans.
 
 The transport's simulator object (a :class:`Wire`) publishes; this module only decides when.
 """
@@ -92,7 +93,9 @@ def run_loop(wire: Wire, rate: float, duration: float | None, pids=(), *, udp: b
     wire.publish_clock()
     wire.publish_drive()
     backlog = Backlog(list(pids), udp=udp) if rate <= 0 and pids else None
-    followers = Followers(pids, skip=[backlog.thread.native_id]) if backlog is not None else None
+    followers = None
+    if backlog is not None and wire.graded is not None:
+        followers = Followers(pids, skip=[backlog.thread.native_id])
     try:
         _step_loop(wire, rate, end_step, backlog, followers)
     except KeyboardInterrupt:
@@ -132,7 +135,7 @@ def _step_loop(wire: Wire, rate: float, end_step: int | None, backlog: Backlog |
         step += 1
         if step % clock_every == 0 or sparse and _message_due(wire, step, drive_every, scan_every):
             wire.publish_clock()
-            if followers is not None:
+            if followers is not None and followers.due(s.t, wire.graded.cmd_count):
                 followers.wait()
         if step % CLOCK_EVERY == 0:
             wire.publish_fast(dt * CLOCK_EVERY)
@@ -144,6 +147,8 @@ def _step_loop(wire: Wire, rate: float, end_step: int | None, backlog: Backlog |
             listened = wire.publish_scans()
             if rate <= 0 and listened and wire.commanded():
                 wire.graded.answered.wait(ANSWER_WAIT)
+                if followers is not None:
+                    followers.answered(wire.graded.cmd_count)
 
 
 def _message_due(wire: Wire, step: int, drive_every: int, scan_every: int) -> bool:

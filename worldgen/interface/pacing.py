@@ -106,6 +106,7 @@ class Governor:
 
 
 FOLLOW_WAIT = 0.002      # s of real time a /clock waits at most for the nodes to take it in
+PROBATION = 3.0          # s of simulated time every /clock waits, whatever the nodes do
 STRIKES = 5              # a thread still running after that many such waits in a row is not waited for
 LOOK_THREADS = 0.25      # s of real time between looks for new threads
 
@@ -120,7 +121,14 @@ class Followers:
     several clocks on (rospy keeps only the latest of the clocks waiting): it then acts at a later simulated time
     than in Gazebo, more often the busier the machine. A wait lasts at most :data:`FOLLOW_WAIT`; a thread that is
     still running after :data:`STRIKES` waits in a row (a busy loop) is not waited for until it is seen resting.
-    Each look reads a few hundred bytes per thread from files kept open (about 4 µs a thread)."""
+    Each look reads a few hundred bytes per thread from files kept open (about 4 µs a thread).
+
+    Waiting costs the simulator the nodes' share of the processor at every clock, which only nodes that act on
+    their own time need: :meth:`due` says when to. Every clock waits in the first :data:`PROBATION` simulated
+    seconds; after them only while the robot's commands have not all been answers to scans (:meth:`answered`): a
+    node that drives on a timer or a ``rospy.Rate`` loop, or none yet, is followed to the end; one that only
+    answers scans (and so is waited for after each, see :mod:`.loop`) no longer, until a command comes
+    unasked."""
 
     def __init__(self, pids, skip=()):
         self.pids = [int(p) for p in pids]
@@ -129,6 +137,19 @@ class Followers:
         self.files: dict[tuple[int, int], int] = {}
         self.strikes: dict[tuple[int, int], int] = {}
         self.looked = 0.0
+        self.counted, self.answers, self.unasked = 0, False, False
+
+    def due(self, sim_t: float, commands: int) -> bool:
+        """Whether the clock at simulated time ``sim_t`` waits for the nodes, the robot having had ``commands``
+        commands so far (see the class docstring)."""
+        if commands != self.counted:   # commands that answered no scan
+            self.unasked, self.counted = True, commands
+        return sim_t < PROBATION or self.unasked or not self.answers
+
+    def answered(self, commands: int) -> None:
+        """After a scan's wait for its answer: the commands that came meanwhile (``commands`` in all) answered it."""
+        if commands != self.counted:
+            self.answers, self.counted = True, commands
 
     def _look_for_threads(self) -> None:
         now = time.monotonic()
