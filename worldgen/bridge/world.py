@@ -130,9 +130,3 @@ def write_config(folder: Path, world: World, **options) -> Path:
     path = folder / "sim.json"
     path.write_text(json.dumps(config), encoding="utf-8")
     return path
-
-
-def model_name(robot: str | None) -> str:
-    """The model name a robot gets in Gazebo's lists: ``turtlebot3_burger`` as the class's launch files spawn it."""
-    robot = robot or "burger"
-    return f"turtlebot3_{robot}" if robot in ("burger", "waffle", "waffle_pi") else "turtlebot3"

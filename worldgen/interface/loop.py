@@ -39,7 +39,7 @@ PAUSED_CLOCK = 0.1       # s of real time between /clock messages while paused
 
 class Wire:
     """What the loop asks of a transport's simulator (the ROS 1 and ROS 2 ones implement it): ``session`` (the
-    :class:`~worldgen.sim.session.Session`), ``paused``, ``person`` (a moving person's body and loop, or None),
+    :class:`~worldgen.sim.session.Session`), ``paused``, ``person`` (a :class:`.simulator.Person`, or None),
     ``graded`` (the :class:`~.robot.RobotIO` whose answers are waited for), and the methods below."""
 
     session = None
@@ -79,8 +79,6 @@ class Wire:
         """Whether some node publishes the graded robot's velocity commands (worth waiting for an answer)."""
         raise NotImplementedError
 
-    def person_xy(self, t: float) -> tuple[float, float]:
-        raise NotImplementedError
 
 
 def run_loop(wire: Wire, rate: float, duration: float | None, pids=(), *, udp: bool = False) -> dict:
@@ -130,7 +128,7 @@ def _step_loop(wire: Wire, rate: float, end_step: int | None, backlog: Backlog |
             governor = Governor(rate, backlog, s.t)   # paced afresh from where it stopped
             continue
         if person is not None:
-            s.move_body(person[0], *wire.person_xy(s.t + dt))
+            s.move_body(person.body, *person.xy(s.t + dt))
         s.run(dt)
         step += 1
         if step % clock_every == 0 or sparse and _message_due(wire, step, drive_every, scan_every):

@@ -37,7 +37,6 @@ written to the config's ``trace`` file at the end, for :mod:`.metrics`.
 from __future__ import annotations
 
 import json
-import math
 import os
 import sys
 import threading
@@ -46,17 +45,14 @@ import types
 import warnings
 from pathlib import Path
 
-from ..bridge.world import model_name
 from ..core.errors import WorldgenError
-from ..core.scene import Scene
 from ..interface.camera import CameraIO
 from ..interface.loop import Wire, run_loop
+from ..interface.simulator import (NO_TIMING, graded_of, open_session, person_of, session_robots,
+                                  write_trace)
 from ..interface.signals import deliver_interrupts, ignore_interrupts, pending_interrupt
 from ..interface.robot import RobotIO
 from ..interface.topics import join, topics as stack_topics
-from ..robots import robot_urdf
-from ..robots.profile import robot_profile
-from ..sim.session import Session
 from .camera_topics import CameraTopics
 from .gazebo_api import GazeboApi
 from .messages import fill, message_class, ros_time
@@ -86,33 +82,17 @@ class Bridge(Wire):
             import rosbag   # Debian's, beside rospy: only when a bag is asked for
 
             self.bag = rosbag.Bag(config["bag"], "w")
-        robots = config.get("robots") or [{}]
         self.robots: list[RobotTopics] = []
         self.removed: list[dict] = []
-        for i, entry in enumerate(robots):
-            robot = session.robots[0] if i == 0 else session.add_robot(
-                entry.get("robot") or "burger", entry["spawn"], name=entry.get("name") or f"robot_{i}",
-                mappings=entry.get("mappings"))
-            if i == 0 and entry.get("name"):
-                robot.name = entry["name"]
+        for i, (robot, entry) in enumerate(session_robots(session, config)):
             io = RobotIO(robot, entry.get("ns", "/"), self.tf_prefix(entry), lock=self.lock,
                          record_scans=bool(config.get("record_scans")))
             self.robots.append(RobotTopics(rospy, io, self.bag if i == 0 else None))
             self.add_cameras(self.robots[-1])
-        self.graded_topics = self._graded(config.get("graded"))
+        self.graded_topics = graded_of(self.robots, config.get("graded"))
         self.graded = self.graded_topics.io
         self.api = GazeboApi(rospy, self)
-        self.trace = {"person": []}
-        self.person = None
-        if config.get("person"):
-            p = config["person"]
-            self.person = (session.add_mover(p["radius"], p["height"], "person", self.person_xy(0.0)), p)
-
-    def _graded(self, which) -> RobotTopics:
-        for topics in self.robots:
-            if which in (topics.ns, topics.ns.strip("/"), topics.robot.name):
-                return topics
-        return self.robots[0]
+        self.person = person_of(session, config)
 
     def tf_prefix(self, entry: dict) -> str:
         """A robot's tf prefix: the config's, else the ``tf_prefix`` parameter searched from its namespace
@@ -204,7 +184,7 @@ class Bridge(Wire):
             topics.io.now = t
             topics.publish_drive(t, self.pubs["tf"])
         if self.person is not None:
-            self.trace["person"].append([t, *self.person_xy(t)])
+            self.person.record(t)
 
     def fast_heard(self) -> bool:
         """Whether some node listens to a robot's IMU or Gazebo's model or link states."""
@@ -232,16 +212,11 @@ class Bridge(Wire):
                 if step % camera.every == 0:
                     camera.publish(self.session, self.session.t)
 
-    def person_xy(self, t: float) -> tuple[float, float]:
-        p = self.config["person"]
-        angle = p["phase"] + p["speed"] * t / p["loop_radius"]
-        return (p["centre"][0] + p["loop_radius"] * math.cos(angle), p["centre"][1] + p["loop_radius"] * math.sin(angle))
-
     def result(self) -> dict:
         """The trace file: the graded robot's rows at the top level (what :mod:`.metrics` reads), every robot's
         under ``robots``."""
         graded = self.graded.result()
-        return dict(graded, person=self.trace["person"], robot=self.config.get("robot") or "burger",
+        return dict(graded, person=self.person.path if self.person else [], robot=self.config.get("robot") or "burger",
                     robots=[t.io.result() for t in self.robots] + self.removed, findings=self.stray_commands())
 
     def stray_commands(self) -> list[dict]:
@@ -320,13 +295,6 @@ def wait_for_master(param: str, token: str) -> bool:
     return False
 
 
-def _write_json(path: str, data: dict) -> None:
-    tmp = f"{path}.part"
-    with open(tmp, "w", encoding="utf-8") as fh:
-        json.dump(data, fh)
-    os.replace(tmp, path)
-
-
 def main(argv: list[str]) -> int:
     """``CONFIG.json`` holds: scene_file (a pickled Scene), robot, spawn [x, y, yaw], robots (null, or one entry
     per robot: name, ns, robot, spawn, tf_prefix, mappings; the first is robot/spawn's), graded (the namespace or
@@ -346,13 +314,7 @@ def main(argv: list[str]) -> int:
     try:
         rospy = import_rospy()
 
-        first = (config.get("robots") or [{}])[0]
-        session = Session(Scene.load(config["scene_file"]), first.get("robot") or config.get("robot") or "burger",
-                          tuple(first.get("spawn") or config["spawn"]), no_hit=config.get("no_hit", "inf"),
-                          seed=config.get("seed", 0),
-                          mappings=first.get("mappings"), name=first.get("name") or model_name(config.get("robot")))
-        if _has_camera(session, config):
-            session.open_cameras()   # no OpenGL: one line naming the packages, before joining the master
+        session = open_session(config)   # no OpenGL for a camera: one line naming the packages, before the master
     except WorldgenError as err:
         print(f"worldgen: error: {err}", file=sys.stderr, flush=True)
         return 2
@@ -370,7 +332,7 @@ def main(argv: list[str]) -> int:
             print(f"worldgen: error: {err}", file=sys.stderr, flush=True)
             return 2
         bridge.publish_static()
-        timing = {"sim_time_s": 0.0, "wall_time_s": 0.0, "real_time_factor": None, "interrupted": True}
+        timing = dict(NO_TIMING)
         try:
             deliver_interrupts()   # one that came while starting is raised here, where it is handled
             held = config.get("start_param") or config.get("start_file")
@@ -385,14 +347,6 @@ def main(argv: list[str]) -> int:
             ignore_interrupts()   # a second signal must not cut the trace short
             finish(rospy, bridge, config, timing)
     return 0
-
-
-def _has_camera(session, config: dict) -> bool:
-    """Whether any robot of the config has a camera (the first one is the session's)."""
-    if session.main.profile.cameras:
-        return True
-    others = (config.get("robots") or [{}])[1:]
-    return any(robot_profile(robot_urdf(e.get("robot") or "burger", e.get("mappings"))).cameras for e in others)
 
 
 def keep_freed_memory() -> None:
@@ -423,5 +377,5 @@ def finish(rospy, bridge: Bridge, config: dict, timing: dict) -> None:
             for topics in bridge.robots:
                 topics.bag = None
         if config.get("trace"):
-            _write_json(config["trace"], dict(bridge.result(), timing=timing))
+            write_trace(config["trace"], dict(bridge.result(), timing=timing))
     rospy.signal_shutdown("worldgen sim done")

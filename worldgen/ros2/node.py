@@ -18,24 +18,20 @@ until it exists, or until ``expect`` other DDS participants have matched some to
 from __future__ import annotations
 
 import json
-import math
 import os
 import sys
 import threading
 import time
 from pathlib import Path
 
-from ..bridge.world import model_name
 from ..core.errors import WorldgenError
-from ..core.scene import Scene
 from ..interface.camera import CameraIO
 from ..interface.loop import Wire, run_loop
+from ..interface.simulator import (NO_TIMING, graded_of, open_session, person_of, session_robots,
+                                  write_trace)
 from ..interface.signals import deliver_interrupts, ignore_interrupts
 from ..interface.robot import PLUGINS, RobotIO
 from ..interface.topics import TASK_INPUTS, Qos, camera_topics, clock_every, frame, join, topics
-from ..robots import robot_urdf
-from ..robots.profile import robot_profile
-from ..sim.session import Session
 from . import msgs
 from .encode import build, velocity
 from .discovery import announce
@@ -142,12 +138,7 @@ class DdsWire(Wire):
         if self.stack == "jazzy" and config.get("cmd_vel") == "twist":
             cmd_type = "geometry_msgs/msg/Twist"
         self.robots: list[DdsRobot] = []
-        for i, entry in enumerate(config.get("robots") or [{}]):
-            robot = session.robots[0] if i == 0 else session.add_robot(
-                entry.get("robot") or "burger", entry["spawn"], name=entry.get("name") or f"robot_{i}",
-                mappings=entry.get("mappings"))
-            if i == 0 and entry.get("name"):
-                robot.name = entry["name"]
+        for robot, entry in session_robots(session, config):
             model = entry.get("robot") or config.get("robot") or "burger"
             io = RobotIO(robot, entry.get("ns", "/"), (entry.get("tf_prefix") or entry.get("ns", "")).strip("/"),
                          lock=self.lock, record_scans=bool(config.get("record_scans")), plugins=PLUGINS[self.stack],
@@ -157,19 +148,9 @@ class DdsWire(Wire):
                                            io.ns)
                                  for c in robot.profile.cameras if c.link in robot.link_index]
             self.robots.append(dds_robot)
-        self.graded_robot = self._graded(config.get("graded"))
+        self.graded_robot = graded_of(self.robots, config.get("graded"))
         self.graded = self.graded_robot.io
-        self.trace = {"person": []}
-        self.person = None
-        if config.get("person"):
-            p = config["person"]
-            self.person = (session.add_mover(p["radius"], p["height"], "person", self.person_xy(0.0)), p)
-
-    def _graded(self, which) -> DdsRobot:
-        for robot in self.robots:
-            if which in (robot.ns, robot.ns.strip("/"), robot.robot.name):
-                return robot
-        return self.robots[0]
+        self.person = person_of(session, config)
 
     # -- endpoints -----------------------------------------------------------------------------------------
 
@@ -220,7 +201,7 @@ class DdsWire(Wire):
             robot.io.now = t
             robot.publish_drive(t)
         if self.person is not None:
-            self.trace["person"].append([t, *self.person_xy(t)])
+            self.person.record(t)
 
     def fast_heard(self) -> bool:
         return any(robot.heard("imu") for robot in self.robots)
@@ -243,14 +224,9 @@ class DdsWire(Wire):
                 if step % camera.every == 0:
                     camera.publish(self.session, self.session.t)
 
-    def person_xy(self, t: float) -> tuple:
-        p = self.config["person"]
-        angle = p["phase"] + p["speed"] * t / p["loop_radius"]
-        return (p["centre"][0] + p["loop_radius"] * math.cos(angle), p["centre"][1] + p["loop_radius"] * math.sin(angle))
-
     def result(self) -> dict:
         graded = self.graded.result()
-        return dict(graded, person=self.trace["person"], robot=self.config.get("robot") or "burger",
+        return dict(graded, person=self.person.path if self.person else [], robot=self.config.get("robot") or "burger",
                     robots=[r.io.result() for r in self.robots], findings=self.findings)
 
 
@@ -408,30 +384,10 @@ def _pids(config: dict) -> list:
         return []
 
 
-def _write_json(path: str, data: dict) -> None:
-    tmp = f"{path}.part"
-    with open(tmp, "w", encoding="utf-8") as fh:
-        json.dump(data, fh)
-    os.replace(tmp, path)
-
-
-def _has_camera(session, config: dict) -> bool:
-    if session.main.profile.cameras:
-        return True
-    others = (config.get("robots") or [{}])[1:]
-    return any(robot_profile(robot_urdf(e.get("robot") or "burger", e.get("mappings"))).cameras for e in others)
-
-
 def main(argv: list) -> int:
     config = json.loads(Path(argv[0]).read_text(encoding="utf-8"))
     try:
-        first = (config.get("robots") or [{}])[0]
-        session = Session(Scene.load(config["scene_file"]), first.get("robot") or config.get("robot") or "burger",
-                          tuple(first.get("spawn") or config["spawn"]), no_hit=config.get("no_hit", "inf"),
-                          seed=config.get("seed", 0), mappings=first.get("mappings"),
-                          name=first.get("name") or model_name(config.get("robot")))
-        if _has_camera(session, config):
-            session.open_cameras()
+        session = open_session(config)
     except WorldgenError as err:
         print(f"worldgen: error: {err}", file=sys.stderr, flush=True)
         return 2
@@ -439,7 +395,7 @@ def main(argv: list) -> int:
     discovery = Discovery("localhost" if given.get("range") in (None, "off") else given["range"],
                           tuple(given.get("peers") or ()))
     duration = config.get("duration")
-    timing = {"sim_time_s": 0.0, "wall_time_s": 0.0, "real_time_factor": None, "interrupted": True}
+    timing = dict(NO_TIMING)
     with session, Participant(int(config["domain"]), discovery) as participant:
         wire = DdsWire(session, config, participant)
         graph = announce(participant, wire)
@@ -460,6 +416,6 @@ def main(argv: list) -> int:
             ignore_interrupts()
             with wire.lock:
                 if config.get("trace"):
-                    _write_json(config["trace"], dict(wire.result(), timing=timing))
+                    write_trace(config["trace"], dict(wire.result(), timing=timing))
             graph.close()
     return 0
