@@ -132,7 +132,9 @@ def cycles(g: dict[str, set[str]]) -> list[list[str]]:
     return found
 
 
-def closure(g: dict[str, set[str]], start: str) -> set[str]:
+def closure(g: dict[str, set[str]], start: str, packages: bool = False) -> set[str]:
+    """Every module ``start`` reaches in ``g``; with ``packages``, each one's parent packages too (their
+    ``__init__``, which importing a module runs)."""
     seen, todo = set(), [start]
     while todo:
         m = todo.pop()
@@ -140,6 +142,9 @@ def closure(g: dict[str, set[str]], start: str) -> set[str]:
             continue
         seen.add(m)
         todo.extend(g.get(m, ()))
+        if packages:
+            parts = m.split(".")
+            todo.extend(".".join(parts[:i]) for i in range(2, len(parts)) if ".".join(parts[:i]) in g)
     return seen
 
 
@@ -331,20 +336,6 @@ IMPORTS_LEFT = {
 COMMANDS_PART = "cli"
 
 
-def import_closure(g: dict[str, set[str]], start: str) -> set[str]:
-    """What importing ``start`` imports: :func:`closure`, with each module's parent packages (their __init__)."""
-    seen, todo = set(), [start]
-    while todo:
-        m = todo.pop()
-        if m in seen:
-            continue
-        seen.add(m)
-        todo.extend(g.get(m, ()))
-        parts = m.split(".")
-        todo.extend(".".join(parts[:i]) for i in range(2, len(parts)) if ".".join(parts[:i]) in g)
-    return seen
-
-
 def late_imports(path: Path) -> list[tuple[int, str]]:
     """(line, module) of every worldgen module ``path`` imports inside a function."""
     name = module_name(path)
@@ -376,9 +367,9 @@ def test_worldgen_modules_are_imported_at_the_top():
         module = module_name(path)
         if part(module) == COMMANDS_PART or any(module == m or module.startswith(m + ".") for m in IMPORTS_LEFT):
             continue
-        own = {m.split(".")[0] for m in import_closure(top, module)}
+        own = {m.split(".")[0] for m in closure(top, module, packages=True)}
         for line, target in late_imports(path):
-            brings = {m.split(".")[0] for m in import_closure(top, target)} - own
+            brings = {m.split(".")[0] for m in closure(top, target, packages=True)} - own
             if not brings & set(LAZY_THIRD_PARTY) and (module, target) not in LAZY_WORLDGEN:
                 late.append(f"{path.relative_to(PACKAGE.parent)}:{line} imports {target} in a function")
     assert late == []

@@ -40,12 +40,17 @@ PAUSED_CLOCK = 0.1       # s of real time between /clock messages while paused
 class Wire:
     """What the loop asks of a transport's simulator (the ROS 1 and ROS 2 ones implement it): ``session`` (the
     :class:`~worldgen.sim.session.Session`), ``paused``, ``person`` (a :class:`.simulator.Person`, or None),
-    ``graded`` (the :class:`~.robot.RobotIO` whose answers are waited for), and the methods below."""
+    ``robots`` (the transport's robots: each with ``io``, its :class:`~.robot.RobotIO`, ``cameras``, each with
+    ``every`` and ``publish(session, t)``, and ``publish_scan(session)``, True when some node listens),
+    ``graded_robot`` (the one of them whose answers are waited for; ``graded``, its RobotIO), and the methods
+    below."""
 
     session = None
     clock_every = CLOCK_EVERY   # physics steps between two /clock messages
     paused = False
     person = None
+    robots: list = []
+    graded_robot = None
     graded = None
 
     def shut_down(self) -> bool:
@@ -69,16 +74,24 @@ class Wire:
         raise NotImplementedError
 
     def publish_cameras(self, step: int) -> None:
-        raise NotImplementedError
+        """The pictures due at physics step ``step`` that some node looks at."""
+        for robot in self.robots:
+            for camera in robot.cameras:
+                if step % camera.every == 0:
+                    camera.publish(self.session, self.session.t)
 
     def publish_scans(self) -> bool:
         """Each robot's scan; True when some node listens to the graded robot's."""
-        raise NotImplementedError
+        listened = False
+        for robot in self.robots:
+            robot.io.answered.clear()
+            heard = robot.publish_scan(self.session)
+            listened = listened or (heard and robot is self.graded_robot)
+        return listened
 
     def commanded(self) -> bool:
         """Whether some node publishes the graded robot's velocity commands (worth waiting for an answer)."""
         raise NotImplementedError
-
 
 
 def run_loop(wire: Wire, rate: float, duration: float | None, pids=(), *, udp: bool = False) -> dict:

@@ -89,8 +89,8 @@ class Bridge(Wire):
                          record_scans=bool(config.get("record_scans")))
             self.robots.append(RobotTopics(rospy, io, self.bag if i == 0 else None))
             self.add_cameras(self.robots[-1])
-        self.graded_topics = graded_of(self.robots, config.get("graded"))
-        self.graded = self.graded_topics.io
+        self.graded_robot = graded_of(self.robots, config.get("graded"))
+        self.graded = self.graded_robot.io
         self.api = GazeboApi(rospy, self)
         self.person = person_of(session, config)
 
@@ -165,7 +165,7 @@ class Bridge(Wire):
         self.api.drain()
 
     def commanded(self) -> bool:
-        return self.graded_topics.cmd_sub.get_num_connections() > 0
+        return self.graded_robot.cmd_sub.get_num_connections() > 0
 
     def _send(self, key: str, values: dict) -> None:
         publisher = self.pubs[key]
@@ -195,22 +195,6 @@ class Bridge(Wire):
         for topics in self.robots:
             topics.publish_imu(dt, self.session.t)
         self.api.publish_states()
-
-    def publish_scans(self) -> bool:
-        """Each robot's scan; True when some node listens to the graded robot's."""
-        listened = False
-        for topics in self.robots:
-            topics.io.answered.clear()
-            heard = topics.publish_scan(self.session)
-            listened = listened or (heard and topics is self.graded_topics)
-        return listened
-
-    def publish_cameras(self, step: int) -> None:
-        """The pictures due at physics step ``step`` that some node looks at."""
-        for topics in self.robots:
-            for camera in topics.cameras:
-                if step % camera.every == 0:
-                    camera.publish(self.session, self.session.t)
 
     def result(self) -> dict:
         """The trace file: the graded robot's rows at the top level (what :mod:`.metrics` reads), every robot's

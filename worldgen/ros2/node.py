@@ -210,20 +210,6 @@ class DdsWire(Wire):
         for robot in self.robots:
             robot.publish_imu(dt, self.session.t)
 
-    def publish_scans(self) -> bool:
-        listened = False
-        for robot in self.robots:
-            robot.io.answered.clear()
-            heard = robot.publish_scan(self.session)
-            listened = listened or (heard and robot is self.graded_robot)
-        return listened
-
-    def publish_cameras(self, step: int) -> None:
-        for robot in self.robots:
-            for camera in robot.cameras:
-                if step % camera.every == 0:
-                    camera.publish(self.session, self.session.t)
-
     def result(self) -> dict:
         graded = self.graded.result()
         return dict(graded, person=self.person.path if self.person else [], robot=self.config.get("robot") or "burger",
