@@ -44,6 +44,30 @@ def test_many_primitives_are_all_there():
         assert [session.bodies.label(h[0], h[3]) for h in hits] == [f"row/b{i}" for i in range(40)]
 
 
+def test_a_points_distance_to_each_child_of_a_compound():
+    """Signed distances to a turned box, a lying cylinder and a sphere, worked by hand; the nearest child names a
+    contact, and follows a child that was moved."""
+    from worldgen.sim.scene_loader import Children, SceneBodies
+
+    c, s = math.cos(math.pi / 8), math.sin(math.pi / 8)
+    box = Shape("box", (0.0, 0.0, 0.5), (0.0, 0.0, s, c), size=(2.0, 1.0, 1.0), name="box")   # turned 45° about z
+    rod = Shape("cylinder", (5.0, 0.0, 0.3), (math.sqrt(0.5), 0.0, 0.0, math.sqrt(0.5)), radius=0.3, length=2.0,
+                name="rod")   # its axis along y
+    ball = Shape("sphere", (0.0, 6.0, 1.0), radius=0.5, name="ball")
+    children = Children([box, rod, ball])
+    diagonal = 3 * math.sqrt(0.5)
+    assert children.distances((diagonal, diagonal, 0.5))[0] == pytest.approx(2.0)   # off the box's long face
+    assert children.distances((0.0, 0.0, 0.5))[0] == pytest.approx(-0.5)           # inside: the nearest face
+    assert children.distances((5.0, 3.0, 0.3))[1] == pytest.approx(2.0)             # beyond the rod's end
+    assert children.distances((5.0, 0.0, 1.3))[1] == pytest.approx(0.7)             # beside it
+    assert children.distances((0.0, 6.0, 3.0))[2] == pytest.approx(1.5)
+
+    bodies = SceneBodies(shapes={7: [box, rod, ball]})
+    assert [bodies.label(7, p) for p in ((1.0, 1.0, 0.5), (5.0, 1.2, 0.3), (0.0, 6.4, 1.0))] == ["box", "rod", "ball"]
+    ball.position = (5.0, 3.0, 0.3)   # a model moved: its shapes get new poses
+    assert bodies.label(7, (5.0, 3.4, 0.3)) == "ball"
+
+
 def test_ground_plane_added_only_when_missing():
     plane = Shape("plane", (0.0, 0.0, 0.0), normal=(0.0, 0.0, 1.0), model="ground_plane", link="link")
     with Session(Scene(source=None, shapes=[plane])) as session:

@@ -179,3 +179,40 @@ def test_spec_lint_finds_what_comparing_every_pair_finds(seed):
               for _ in [c for c in (spec_lint._obstacle_shape(o).intersection(w) for w in walls) if c.area > 1e-4][:3]]
     assert [f.message.split(":")[0] for f in found if "overlap" in f.message] == pairs
     assert [f.message.split(" stands in")[0] + " stands in" for f in found if "stands in" in f.message] == stands
+
+
+# --------------------------------------------------------------------------------- the simulation's reach
+
+def test_the_simulation_gives_the_same_numbers_without_what_the_robot_cannot_reach_or_see():
+    """A room and, beyond the job's reach, more boxes than a world is simulated whole with: the simulated job
+    measures exactly what it measures in the room alone, and loads only the room."""
+    from worldgen.check.sim_job import WHOLE_UP_TO, in_reach, reach, sim_numbers
+    from worldgen.robots import robot_urdf
+    urdf = robot_urdf("burger")
+    walls = [Shape("box", (x, y, 0.5), size=(sx, sy, 1.0), model=f"wall{i}")
+             for i, (x, y, sx, sy) in enumerate(((0, -2, 4.1, 0.1), (0, 2, 4.1, 0.1), (-2, 0, 0.1, 4.1),
+                                                 (2, 0, 0.1, 4.1)))]
+    far = reach(urdf) + 2.0   # past the reach from the spawn by more than a box's own
+    boxes = [Shape("box", (far + 0.5 * (i % 40), 0.5 * (i // 40) - 6, 0.5), size=(0.2, 0.2, 1.0), model=f"b{i}")
+             for i in range(WHOLE_UP_TO + 500)]
+    room = Scene(source=None, shapes=walls, models=[s.model for s in walls])
+    crowded = Scene(source=None, shapes=walls + boxes, models=[s.model for s in walls + boxes])
+    assert in_reach(crowded, (0.5, 0.3, 0.2), urdf).shapes == walls
+    assert in_reach(room, (0.5, 0.3, 0.2), urdf) is room   # a world of a usual size: simulated whole
+
+    alone = sim_numbers(room, "burger", (0.5, 0.3, 0.2), urdf=urdf).to_dict()
+    among = sim_numbers(crowded, "burger", (0.5, 0.3, 0.2), urdf=urdf).to_dict()
+    alone.pop("wall_seconds"), among.pop("wall_seconds")
+    assert among == alone
+    assert alone["stop"]["distance"] == pytest.approx(0.5, abs=0.05)   # it did drive to a wall
+
+
+def test_a_shapes_reach_is_its_farthest_point():
+    assert Shape("box", (0, 0, 0), size=(2.0, 2.0, 1.0)).reach() == pytest.approx(1.5)
+    assert Shape("cylinder", (0, 0, 0), radius=0.3, length=0.8).reach() == pytest.approx(0.5)
+    assert Shape("sphere", (0, 0, 0), radius=0.7).reach() == 0.7
+    import numpy as np
+
+    mesh = Shape("mesh", (0, 0, 0), vertices=np.array([[0, 0, 0], [3.0, 4.0, 0], [1, 1, 1]]), faces=np.array([[0, 1, 2]]))
+    assert mesh.reach() == pytest.approx(5.0)
+    assert Shape("plane", (0, 0, 0), normal=(0, 0, 1)).reach() == float("inf")

@@ -19,6 +19,7 @@ from ..core.errors import WorldFileError, WorldgenError
 from ..core.findings import Finding
 from .checks import SIM_CHECKS, sim_findings
 from .report import Result
+from .sim_job import in_reach
 
 EARLY_WORLD_BYTES = 1 << 20   # a world (or a spec's SDF) up to this size is read by an early child as well
 
@@ -69,8 +70,9 @@ def start_sim(result: Result, scene, options, tmp: Path, job: str):
     from ..sim.process import start_isolated
 
     scene_file = tmp / "scene.pickle"
-    scene.save(scene_file)
-    return start_isolated(job, {**_kwargs(result, options, tmp), "scene_file": str(scene_file)}, options.sim_timeout)
+    kwargs = _kwargs(result, options, tmp)
+    in_reach(scene, result.spawn, kwargs["urdf"]).save(scene_file)   # what the child loads, and no more
+    return start_isolated(job, {**kwargs, "scene_file": str(scene_file)}, options.sim_timeout)
 
 
 def _kwargs(result: Result, options, tmp: Path) -> dict:

@@ -8,7 +8,7 @@ pybullet or trimesh objects, only numbers, so it can be tested and drawn without
 from __future__ import annotations
 
 import pickle
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Literal, Tuple
 
@@ -52,6 +52,19 @@ class Shape:
     def label(self) -> str:
         return "/".join(p for p in (self.model, self.link, self.name) if p)
 
+    def reach(self) -> float:
+        """How far from its own frame's origin the shape reaches (the radius of a sphere round it; infinite for
+        a plane)."""
+        if self.kind == "box":
+            return 0.5 * sum(v * v for v in self.size) ** 0.5
+        if self.kind == "cylinder":
+            return (self.radius ** 2 + (0.5 * self.length) ** 2) ** 0.5
+        if self.kind == "sphere":
+            return self.radius
+        if self.kind == "mesh" and self.vertices is not None and len(self.vertices):
+            return float((self.vertices ** 2).sum(axis=1).max()) ** 0.5
+        return float("inf") if self.kind == "plane" else 0.0
+
 
 @dataclass
 class Scene:
@@ -81,3 +94,16 @@ class Scene:
     def obstacles(self) -> list[Shape]:
         """Every shape but ground planes."""
         return [s for s in self.shapes if s.kind != "plane"]
+
+    def around(self, x: float, y: float, radius: float) -> "Scene":
+        """This scene with only the shapes that come within ``radius`` (horizontally) of (``x``, ``y``), for a
+        simulation that can neither go nor see farther; planes and shapes that move are always kept. The shapes
+        themselves are shared, not copied."""
+        def near(shape: Shape) -> bool:
+            if not shape.static or shape.kind == "plane":
+                return True
+            gap = ((shape.position[0] - x) ** 2 + (shape.position[1] - y) ** 2) ** 0.5
+            return gap <= radius + shape.reach()
+
+        return replace(self, shapes=[s for s in self.shapes if near(s)],
+                       visuals=[s for s in self.visuals if near(s)])

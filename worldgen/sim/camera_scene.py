@@ -25,7 +25,7 @@ from ..robots.cameras import CameraParams
 from ..robots.visuals import link_visuals
 from . import triangles
 from .camera import Renderer, intrinsics
-from .models import belongs
+from .models import owners
 
 
 def sensor_pose(robot, camera: CameraParams) -> np.ndarray:
@@ -54,7 +54,8 @@ class CameraScene:
         self.renderer = Renderer()
         scene, bodies = self.session.scene, self.session.bodies
         shapes = scene.visuals or scene.shapes
-        in_models = {id(s) for name in self.session.models.models for s in shapes if belongs(s, name)}
+        models = self.session.models.models
+        in_models = {id(s) for s in shapes if any(owner in models for owner in owners(s.model))}
         loose = [s for s in shapes if id(s) not in in_models]
         if not any(s.kind == "plane" for s in shapes):   # no ground to see: the collision planes (the added one)
             loose += [s for body in sorted(bodies.planes) for s in bodies.shapes[body]]

@@ -35,9 +35,25 @@ def pose_of(t: np.ndarray) -> Pose7:
     return (float(t[0, 3]), float(t[1, 3]), float(t[2, 3]), *poses.matrix_quat(t[:3, :3]))
 
 
-def belongs(shape: Shape, model: str) -> bool:
-    """Whether a shape is part of model ``model`` (or of a model nested in it)."""
-    return shape.model == model or shape.model.startswith(model + "::")
+def owners(name: str) -> List[str]:
+    """The models a shape of model ``name`` is part of: ``name`` itself and each model it is nested in (each part
+    of it before a ``::``)."""
+    found, at = [name], name.find("::")
+    while at >= 0:
+        found.append(name[:at])
+        at = name.find("::", at + 1)
+    return found
+
+
+def by_model(shapes, names) -> Dict[str, list]:
+    """``shapes`` grouped by which of the model ``names`` they belong to, in one pass (a world of thousands of
+    models would otherwise compare every shape with every model)."""
+    groups: Dict[str, list] = {name: [] for name in names}
+    for shape in shapes:
+        for owner in owners(shape.model):
+            if owner in groups:
+                groups[owner].append(shape)
+    return groups
 
 
 def _shape_matrix(shape: Shape) -> np.ndarray:
@@ -73,11 +89,12 @@ class WorldModels:
     def __init__(self, client: int, bodies: SceneBodies, scene: Scene):
         self.client, self.bodies = client, bodies
         self.models: Dict[str, Model] = {}
+        shapes, seen = by_model(scene.shapes, scene.models), by_model(scene.visuals, scene.models)
         for name in scene.models:
             frame = matrix_of(scene.model_poses[name]) if name in scene.model_poses else np.eye(4)
             inverse = poses.inverse(frame)
-            mine = [s for s in scene.shapes if belongs(s, name)]
-            visuals = [(v, inverse @ _shape_matrix(v)) for v in scene.visuals if belongs(v, name)]
+            mine = shapes[name]
+            visuals = [(v, inverse @ _shape_matrix(v)) for v in seen[name]]
             self.models[name] = Model(name, all(s.static for s in mine), frame, frame.copy(),
                                       [(s, inverse @ _shape_matrix(s)) for s in mine],
                                       visuals=visuals if scene.visuals else None)

@@ -58,6 +58,7 @@ class SceneBodies:
 
     shapes: dict[int, list[Shape]] = field(default_factory=dict)
     planes: set[int] = field(default_factory=set)
+    children: dict[int, Children] = field(default_factory=dict, repr=False)   # body → its shapes as arrays
 
     @property
     def obstacle_bodies(self) -> list[int]:
@@ -70,7 +71,10 @@ class SceneBodies:
             return None
         if len(shapes) == 1:
             return shapes[0]
-        return min(shapes, key=lambda s: distance_to_shape(s, point))
+        children = self.children.get(body)
+        if children is None or not children.current(shapes):
+            children = self.children[body] = Children(shapes)
+        return shapes[int(np.argmin(children.distances(point)))]
 
     def label(self, body: int, point) -> str:
         shape = self.shape_at(body, point)
@@ -190,24 +194,50 @@ def _mesh_pieces(vertices: np.ndarray, faces: np.ndarray):
         yield vertices[used], local.reshape(-1, 3)
 
 
-def _to_local(shape: Shape, point) -> np.ndarray:
-    x, y, z, w = shape.orientation
-    rot = np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-                    [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-                    [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
-    return rot.T @ (np.asarray(point, float) - np.asarray(shape.position, float))
+def _rotation(orientation) -> list:
+    x, y, z, w = orientation
+    return [[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+            [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+            [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]]
 
 
-def distance_to_shape(shape: Shape, point) -> float:
-    """Signed distance from world ``point`` to the surface of a box, cylinder or sphere (negative inside);
-    other kinds: distance to the shape's origin."""
-    p = _to_local(shape, point)
-    if shape.kind == "box" and shape.size is not None:
-        q = np.abs(p) - np.asarray(shape.size, float) / 2
-        return float(np.linalg.norm(np.maximum(q, 0.0)) + min(q.max(), 0.0))
-    if shape.kind == "cylinder" and shape.radius and shape.length:
-        q = np.array([math.hypot(p[0], p[1]) - shape.radius, abs(p[2]) - shape.length / 2])
-        return float(np.linalg.norm(np.maximum(q, 0.0)) + min(q.max(), 0.0))
-    if shape.kind == "sphere" and shape.radius:
-        return float(np.linalg.norm(p) - shape.radius)
-    return float(np.linalg.norm(p))
+class Children:
+    """A body's shapes as arrays, to measure a point's distance to all of them at once (a robot rubbing along a
+    grid of small cells makes thousands of contacts a second, each with a compound of up to 16 children)."""
+
+    def __init__(self, shapes: list[Shape]):
+        self.shapes = shapes
+        self.poses = [(s.position, s.orientation) for s in shapes]
+        self.centres = np.array([s.position for s in shapes], float).reshape(-1, 3)
+        self.rotations = np.array([_rotation(s.orientation) for s in shapes], float).reshape(-1, 3, 3)
+        self.box = np.array([s.kind == "box" and s.size is not None for s in shapes], bool)
+        self.half = np.array([s.size if b else (0.0, 0.0, 0.0) for s, b in zip(shapes, self.box)], float) / 2
+        self.cylinder = np.array([s.kind == "cylinder" and bool(s.radius and s.length) for s in shapes], bool)
+        self.sphere = np.array([s.kind == "sphere" and bool(s.radius) for s in shapes], bool)
+        self.radius = np.array([s.radius or 0.0 for s in shapes], float)
+        self.half_length = np.array([(s.length or 0.0) / 2 for s in shapes], float)
+
+    def current(self, shapes: list[Shape]) -> bool:
+        """Whether these arrays are still ``shapes`` where they are now (a moved model's shapes get new poses)."""
+        return shapes is self.shapes and all(s.position is p and s.orientation is o
+                                             for s, (p, o) in zip(shapes, self.poses))
+
+    def distances(self, point) -> np.ndarray:
+        """Signed distance from world ``point`` to the surface of each box, cylinder and sphere (negative inside);
+        of any other kind, to its origin."""
+        local = np.einsum("nji,nj->ni", self.rotations, np.asarray(point, float) - self.centres)
+        out = np.linalg.norm(local, axis=1)
+        if self.box.any():
+            out[self.box] = _rounded(np.abs(local[self.box]) - self.half[self.box])
+        if self.cylinder.any():
+            near = local[self.cylinder]
+            out[self.cylinder] = _rounded(np.stack([np.hypot(near[:, 0], near[:, 1]) - self.radius[self.cylinder],
+                                                    np.abs(near[:, 2]) - self.half_length[self.cylinder]], axis=1))
+        out[self.sphere] -= self.radius[self.sphere]
+        return out
+
+
+def _rounded(q: np.ndarray) -> np.ndarray:
+    """The signed distance of each row's point, given as its excess ``q`` over each half-extent of a convex
+    shape (outside: the length of the positive part; inside: minus the smallest margin)."""
+    return np.linalg.norm(np.maximum(q, 0.0), axis=1) + np.minimum(q.max(axis=1), 0.0)
