@@ -3,8 +3,10 @@
 Beam i points at ``min_angle + i·(max_angle − min_angle)/(samples − 1)`` counter-clockwise from the sensor's +x,
 as Gazebo spaces them (so with 0…6.28319 the first and last beams overlap). Rays start at ``range_min`` as
 Gazebo's do, so the robot's own housing is never seen, and they skip the robot's bodies altogether. A range is
-the true distance plus optional Gaussian noise, quantised to the range resolution and clipped to the range;
-beams that hit nothing read ``inf`` (Gazebo) or ``0.0`` (the real robot's driver), by option.
+the true distance plus optional Gaussian noise, clipped to the range, as Gazebo Classic's ``RaySensor`` makes it
+(``MultiRayShape::GetRange`` is ``range_min`` plus the ray's length; the ``<range><resolution>`` is read but
+never applied, so readings are not quantised); beams that hit nothing read ``inf`` (Gazebo) or ``0.0`` (the real
+robot's driver), by option.
 """
 
 from __future__ import annotations
@@ -81,8 +83,6 @@ def cast_scan(client: int, params: LidarParams, position, orientation, *, no_hit
     measured = true.copy()
     if rng is not None and params.noise_stddev > 0:
         measured[hit] += rng.normal(params.noise_mean, params.noise_stddev, int(hit.sum()))
-    if params.resolution > 0:
-        measured[hit] = np.round(measured[hit] / params.resolution) * params.resolution
     measured[hit] = np.clip(measured[hit], params.range_min, params.range_max)
     measured[~hit] = NO_HIT[no_hit]
     hit_points = starts + (ends - starts) * fractions[:, None]
