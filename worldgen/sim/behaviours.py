@@ -100,7 +100,7 @@ def spin(session: Session, seconds: float = 2 * math.pi, omega: float = 1.0, sam
 @dataclass
 class StopAtWallResult:
     """One run of the stop-at-wall loop. Distances are the LiDAR's front distance from ``base_scan``; the
-    ``true`` series is the exact one (no noise, no quantisation), ``measured`` what the controller saw."""
+    ``true`` series is the exact one (no noise), ``measured`` what the controller saw."""
 
     target: float
     kp: float

@@ -27,7 +27,7 @@ NO_HIT = {"inf": math.inf, "zero": 0.0}
 class Scan:
     """One revolution, shaped like sensor_msgs/LaserScan plus what a picture or a check needs.
 
-    ``ranges`` are what the sensor reports (noise, quantisation, no-hit value); ``true_ranges`` are the exact
+    ``ranges`` are what the sensor reports (noise, no-hit value); ``true_ranges`` are the exact
     distances (``inf`` for no hit); ``points`` are the world (x, y, z) of each hit (None for no hit);
     ``origin`` is the sensor's world (x, y, z, yaw); ``time`` the simulated time of the scan.
     """
@@ -65,7 +65,7 @@ def cast_scan(client: int, params: LidarParams, position, orientation, *, no_hit
               rng: np.random.Generator | None = None, time: float = 0.0, mask: int = SCENE_GROUP) -> Scan:
     """Cast one scan from the sensor pose (world ``position``, quaternion ``orientation``).
 
-    ``rng`` adds the sensor's Gaussian noise (None: no noise, still quantised); ``mask`` is the collision mask the
+    ``rng`` adds the sensor's Gaussian noise (None: no noise); ``mask`` is the collision mask the
     rays see (the scene alone by default; a robot's own LiDAR also sees the other robots).
     """
     if no_hit not in NO_HIT:

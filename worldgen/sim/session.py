@@ -45,7 +45,7 @@ def warm() -> None:
 
 class Session:
     """Robots in one scene. ``spawn`` is (x, y) or (x, y, yaw) of the first robot's base frame, on the ground;
-    :meth:`add_robot` adds more. ``seed`` seeds the LiDAR's noise (None: no noise, the exact ranges quantised);
+    :meth:`add_robot` adds more. ``seed`` seeds the LiDAR's noise (None: no noise, the exact ranges);
     ``no_hit`` is what a beam that hits nothing reads ("inf" as Gazebo, "zero" as the real LDS-01 driver).
     The physics' step and solver iterations are the class's (:data:`DEFAULT_TIME_STEP`); a world always gets
     Gazebo's ground plane."""
@@ -208,7 +208,7 @@ class Session:
         return self.main.odometry(self.t)
 
     def scan(self, noise: bool = True) -> Scan:
-        """One LiDAR scan from the sensor's current pose (``noise`` False: quantised exact ranges)."""
+        """One LiDAR scan from the sensor's current pose (``noise`` False: the exact ranges)."""
         return self.scan_of(self.main, noise)
 
     def scan_of(self, robot: Robot, noise: bool = True) -> Scan:
