@@ -11,6 +11,7 @@ robot's driver), by option.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -55,10 +56,13 @@ class Scan:
                 "points": [list(p) if p is not None else None for p in self.points]}
 
 
+@functools.lru_cache(maxsize=32)
 def beam_directions(params: LidarParams) -> np.ndarray:
-    """Unit vectors (samples × 3) of the beams in the sensor frame."""
+    """Unit vectors (samples × 3) of the beams in the sensor frame (made once per sensor: read-only)."""
     angles = params.min_angle + np.arange(params.samples) * params.angle_increment
-    return np.stack([np.cos(angles), np.sin(angles), np.zeros_like(angles)], axis=1)
+    directions = np.stack([np.cos(angles), np.sin(angles), np.zeros_like(angles)], axis=1)
+    directions.setflags(write=False)
+    return directions
 
 
 def cast_scan(client: int, params: LidarParams, position, orientation, *, no_hit: str = "inf",
@@ -77,8 +81,8 @@ def cast_scan(client: int, params: LidarParams, position, orientation, *, no_hit
     ends = origin + dirs * params.range_max
     results = pb.rayTestBatch(starts, ends, collisionFilterMask=mask, physicsClientId=client)
     span = params.range_max - params.range_min
-    hit = np.fromiter((r[0] >= 0 for r in results), bool, len(results))
-    fractions = np.fromiter((r[2] for r in results), float, len(results))
+    found = np.array([(r[0], r[2]) for r in results], float).reshape(-1, 2)   # body id, hit fraction
+    hit, fractions = found[:, 0] >= 0, found[:, 1]
     true = np.where(hit, params.range_min + fractions * span, np.inf)
     measured = true.copy()
     if rng is not None and params.noise_stddev > 0:
@@ -99,9 +103,18 @@ def front_distance(scan: Scan, half_angle: float = math.radians(10), *, true: bo
     (``inf`` or 0) — what a student's stop-at-wall node computes. ``true`` uses the exact distances. None when
     every beam there reads no hit."""
     values = np.asarray(scan.true_ranges if true else scan.ranges, float)
-    angles = np.remainder(scan.angle_min + np.arange(len(values)) * scan.angle_increment + math.pi, math.tau) - math.pi
-    ahead = values[(np.abs(angles) <= half_angle + 1e-9) & np.isfinite(values) & (values > 0.0)]
+    ahead = values[_ahead(scan.angle_min, scan.angle_increment, len(values), half_angle)]
+    ahead = ahead[np.isfinite(ahead) & (ahead > 0.0)]
     return float(ahead.min()) if ahead.size else None
+
+
+@functools.lru_cache(maxsize=64)
+def _ahead(angle_min: float, angle_increment: float, count: int, half_angle: float) -> np.ndarray:
+    """Which of ``count`` beams point within ±``half_angle`` of straight ahead (read-only)."""
+    angles = np.remainder(angle_min + np.arange(count) * angle_increment + math.pi, math.tau) - math.pi
+    mask = np.abs(angles) <= half_angle + 1e-9
+    mask.setflags(write=False)
+    return mask
 
 
 def lidar_info(params: LidarParams) -> dict:
