@@ -4,9 +4,9 @@ Run: ``python benchmarks/bench_limits.py [CASE …] [--timeout S]`` (``--list`` 
 measures the worldgen checked out in DIR instead of this one). Every case is
 generated in a temporary folder (removed afterwards), run as ``python -m worldgen …`` in a child process with a
 time limit of its own, and measured there: wall time, and peak memory from ``getrusage(RUSAGE_CHILDREN)`` (the
-child's maximum resident set). A refusal must take under 2 s and 300 MB; the big inputs that are handled have
-bounds of their own (the ``bound`` column). The script always finishes: a case over its time limit is killed and
-reported as such.
+child's maximum resident set). A refusal must take under 2 s and 300 MB; an input that is handled, 10 s and
+500 MB (issue 25's bound for every command on any input under the limits; the ``bound`` column, OVER past it).
+The script always finishes: a case over its time limit is killed and reported as such.
 """
 
 from __future__ import annotations
@@ -335,21 +335,21 @@ CASES = [
     Case("world-fifo", _fifo, REFUSAL, (1, 2)),
     Case("world-dev-zero", lambda t: _validate("/dev/zero"), REFUSAL, (1, 2)),
     Case("boxes-2000-grid", lambda t: _validate(_write(t, "g.world", grid_of_boxes(2000)), "--spawn", "-1,-1"),
-         (10.0, 1000.0)),
+         BOUNDED),
     Case("boxes-10000-grid", lambda t: _validate(_write(t, "g.world", grid_of_boxes(10000)), "--spawn", "-1,-1"),
-         (30.0, 1000.0)),
+         BOUNDED),
     Case("door-clutter-10000", lambda t: _validate(_write(t, "d.world", room_with_door_and_clutter(10000)),
-                                                   "--spawn", "0.1,0.1"), (30.0, 1000.0)),
+                                                   "--spawn", "0.1,0.1"), BOUNDED),
     Case("models-10000", lambda t: _validate(_write(t, "m.world", boxes_beside_room(10000))),
-         (10.0, 1000.0)),
+         BOUNDED),
     Case("models-100000", lambda t: _validate(_write(t, "m.world", boxes_beside_room(100000))),
-         (60.0, 3000.0)),
-    Case("mesh-soup-10000", lambda t: _validate(mesh_soup(t, 10000)), (10.0, 1000.0)),
-    Case("mesh-soup-100000", lambda t: _validate(mesh_soup(t, 100000)), (20.0, 1500.0)),
+         REFUSAL, (2,)),
+    Case("mesh-soup-10000", lambda t: _validate(mesh_soup(t, 10000)), BOUNDED),
+    Case("mesh-soup-100000", lambda t: _validate(mesh_soup(t, 100000)), BOUNDED),
     Case("map-speckle-1500-30%", lambda t: ["build", str(speckled_map(t, 1500)), "-o", str(t / "out.world")],
-         (10.0, 1000.0)),
+         BOUNDED),
     Case("map-speckle-1500-2%", lambda t: ["build", str(speckled_map(t, 1500, 0.02)), "-o", str(t / "o.world")],
-         (10.0, 1000.0)),
+         BOUNDED),
     Case("map-9000-square", lambda t: ["build", str(speckled_map(t, 9000, 0.0)), "-o", str(t / "o.world")],
          REFUSAL, (2,)),
     Case("grid-checker-1400", lambda t: ["build", str(_write(t, "c.txt", "\n".join(
