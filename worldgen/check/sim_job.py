@@ -135,8 +135,8 @@ def in_reach(scene: Scene, spawn, urdf: str) -> Scene:
     """``scene`` as the job simulates it from ``spawn``: whole, up to :data:`WHOLE_UP_TO` shapes; past that, only
     the shapes within :func:`reach` (a grid of thousands of cells then loads and steps as fast as a room).
     Loading fewer shapes groups them into other compound bodies, which moves the simulated numbers by about
-    1e-5 m, and a robot spawned inside a wall anywhere between two outcomes: the worlds people make are simulated
-    exactly as before."""
+    1e-5 m and can tip a robot spawned inside a wall from one outcome to the other, so worlds of a usual size
+    are simulated whole, exactly as before."""
     if len(scene.shapes) <= WHOLE_UP_TO:
         return scene
     return scene.around(spawn[0], spawn[1], reach(urdf))
