@@ -47,7 +47,6 @@ def build_command(spec: Path, out_dir: Path, sdf_version: str | None, model_dir:
     """Build the Gazebo world of the floorplan SPEC (YAML/JSON, or an ASCII grid .txt) as OUT/NAME.world
     (OUT/NAME.sdf, a Gazebo Sim world, with --ros jazzy)."""
     from ..core.errors import InputError
-    from ..core.fsio import write_files
     from ..geometry.building import build_geometry
     from ..launch.targets import SDF_VERSION
     from ..sdf.writer import planned_files
@@ -85,7 +84,6 @@ def _build_gzsim(spec: Path, plan, building, out_dir: Path, sdf_version: str | N
     """build --ros jazzy: the Gazebo Sim world OUT/NAME.sdf, or with --package the world, its launch file and
     the bridge's parameters in the package (a parameter file already there with the same bytes is kept)."""
     from ..core.errors import InputError
-    from ..core.fsio import write_files
     from ..sdf.gzsim import GZ_SDF_VERSIONS, gzsim_world
     from ..sdf.writer import world_sdf
 
@@ -115,11 +113,10 @@ def _write(files: dict, force: bool, within: Path, package_dir: Path | None, ros
     """Write the files, all or none; into a package, its package.xml is given the exec_depends the launch file
     needs when it lacks them (a package scaffolded without --world), so that validate has nothing to say."""
     from ..core.fsio import write_files
-    from ..packages.world_files import added_depends, launch_depends_update
+    from ..packages.world_files import launch_depends_update, update_notes
 
     updated = launch_depends_update(package_dir, ros) if package_dir is not None else {}
-    said = {path: f"updated {path}: exec_depend {', '.join(added_depends(path, text))} (what its launch file "
-                  "starts)" for path, text in updated.items()}
+    said = update_notes(updated)
     for path in write_files({**files, **updated}, force=force, within=within, update=set(updated)):
         click.echo(said.get(path, f"wrote {path}"))
 

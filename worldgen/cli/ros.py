@@ -67,7 +67,7 @@ def launch_command(world: Path, package: str | None, name: str | None, model: st
     from ..launch.targets import check_world_target, cmd_vel_type
     from ..core.spawnpose import floor_pose, parse_spawn
     from ..launch.spawn import spawn_for_world
-    from ..packages.world_files import added_depends, launch_depends_update
+    from ..packages.world_files import launch_depends_update, update_notes
 
     node_refs = [parse_node(n) for n in nodes]
     check_world_target(world, ros)
@@ -102,8 +102,7 @@ def launch_command(world: Path, package: str | None, name: str | None, model: st
         files = without_same_params({**files, (world_pkg or folder) / "params" / BRIDGE_FILE: bridge_yaml(kind)})
     inside = world_pkg is not None and os.path.abspath(folder).startswith(os.path.join(os.path.abspath(world_pkg), ""))
     updated = launch_depends_update(world_pkg, ros, {n.package for n in node_refs}) if inside else {}
-    said = {path: f"updated {path}: exec_depend {', '.join(added_depends(path, new))} (what its launch file starts)"
-            for path, new in updated.items()}
+    said = update_notes(updated)
     written = write_files({**files, **updated}, force=force, within=world_pkg or folder, update=set(updated))
     target = written[0]
     for extra in written[1:]:

@@ -74,6 +74,12 @@ def launch_depends_update(pkg_dir: str | Path, ros: str, also: Iterable[str] = (
     return {manifest: text[:at] + added + text[at:]}
 
 
+def update_notes(updated: dict[Path, str]) -> dict[Path, str]:
+    """The line a command prints for each package.xml of :func:`launch_depends_update` it writes."""
+    return {path: f"updated {path}: exec_depend {', '.join(added_depends(path, text))} (what its launch file "
+                  "starts)" for path, text in updated.items()}
+
+
 def added_depends(manifest: Path, text: str) -> list[str]:
     """The packages ``text`` (a new package.xml) exec_depends (run_depends) on that the file at ``manifest`` does
     not name yet, in order."""

@@ -217,9 +217,9 @@ class Bridge(Wire):
                 for name in sorted(published) if name.endswith("/cmd_vel") and name not in taken]
 
 
-def wait_for_start(rospy, bridge: Bridge, param: str | None, file: str | None = None) -> None:
-    """Hold simulated time at 0 (publishing /clock) until ``param`` is true on the master or ``file`` exists: the
-    nodes under test are ready, as with Gazebo started paused and then unpaused."""
+def wait_for_start(rospy, bridge: Bridge, file: str) -> None:
+    """Hold simulated time at 0 (publishing /clock) until ``file`` exists: the nodes under test are ready, as with
+    Gazebo started paused and then unpaused."""
     deadline = time.monotonic() + START_WAIT
     clock_at = 0.0
     while time.monotonic() < deadline and not rospy.is_shutdown():
@@ -227,9 +227,9 @@ def wait_for_start(rospy, bridge: Bridge, param: str | None, file: str | None = 
             bridge.publish_clock()
             clock_at = time.monotonic() + 0.02
         bridge.drain()
-        if file is not None and os.path.exists(file) or param is not None and rospy.get_param(param, False):
+        if os.path.exists(file):
             return
-        time.sleep(0.005 if file is not None else 0.02)
+        time.sleep(0.005)
 
 
 def join_master(rospy) -> None:
@@ -283,11 +283,9 @@ def main(argv: list[str]) -> int:
     """``CONFIG.json`` holds: scene_file (a pickled Scene), robot, spawn [x, y, yaw], robots (null, or one entry
     per robot: name, ns, robot, spawn, tf_prefix, mappings; the first is robot/spawn's), graded (the namespace or
     name of the robot the trace is about), no_hit, rate (0 = max), duration (s or null), trace (file or null), bag
-    (file or null), start_param and start_file (both null: start at once; else once the parameter is true or
-    the file exists), up_param (null, or [parameter, token]: join the master
-    once it holds the token, see :func:`wait_for_master`), joined_file (null, or a file made once it has joined
-    the master), person (null or the loop), set_sim_time (bool),
-    gazebo_msgs (a folder to import gazebo_msgs from, or null), record_scans (bool: every robot's trace gets
+    (file or null), start_file (null: start at once; else once the file exists), up_param (null, or [parameter,
+    token]: join the master once it holds the token, see :func:`wait_for_master`), joined_file (null, or a file
+    made once it has joined the master), person (null or the loop), set_sim_time (bool), gazebo_msgs (a folder to import gazebo_msgs from, or null), record_scans (bool: every robot's trace gets
     ``lidar`` and every published scan under ``ranges``, see :meth:`.RobotTopics.publish_scan`)."""
     keep_freed_memory()
     if not wait_for_file(Path(argv[0])):
@@ -319,9 +317,9 @@ def main(argv: list[str]) -> int:
         timing = dict(NO_TIMING)
         try:
             deliver_interrupts()   # one that came while starting is raised here, where it is handled
-            held = config.get("start_param") or config.get("start_file")
+            held = config.get("start_file")
             if held:
-                wait_for_start(rospy, bridge, config.get("start_param"), config.get("start_file"))
+                wait_for_start(rospy, bridge, held)
             print("worldgen-sim: running", file=sys.stderr, flush=True)
             pids = rospy.get_param("/worldgen/pids", []) if held else []
             timing = run_loop(bridge, float(config.get("rate") or 0.0), config.get("duration"), pids)
