@@ -39,7 +39,9 @@ from .participant import Discovery, Participant, endpoint_qos
 from .typehash import type_hash
 
 START_WAIT = 30.0        # s of real time to wait for the start
-SETTLE = 0.2             # s of real time after the nodes' endpoints first match, at most, for the rest to match
+SETTLE = 1.0             # s of real time after the nodes' endpoints first match, at most, for the rest to match
+                         # (a node driving the robot and reading what the task needs starts it sooner; on a busy
+                         # machine a node's cmd_vel writer matched 0.2 s after its scan reader, too late)
 MATCHED_BOTH = 0.05      # s at least: a match the simulator sees may not yet be one the node sees (DDS matches
                          # each side on its own)
 LOOK_EVERY = 0.25        # s of real time between looks at the others' endpoints
