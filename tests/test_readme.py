@@ -60,6 +60,13 @@ def test_readme_opens_with_the_two_commands():
     assert first_block[1].startswith("bash .ci/run")
 
 
+def test_the_test_command_the_readme_names_is_the_one_ci_runs():
+    said = re.search(r"runs: (python -m pytest .*)$", SH_BLOCKS[0][1].splitlines()[1]).group(1).split()
+    ci_lines = (REPO / ".ci" / "run").read_text().splitlines()
+    run = [line.split() for line in ci_lines if line.startswith("python -m pytest")]
+    assert run == [said[:4] + ["-p", "no:cacheprovider"] + said[4:]]   # CI only adds: no .pytest_cache in a clone
+
+
 def _skip_reason(line: str) -> str | None:
     return next((why for mark, why in SKIPPED if mark in line), None)
 
