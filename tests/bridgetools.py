@@ -24,8 +24,7 @@ SCAN_X = -0.032                                   # base_scan in base_footprint 
 
 def need_ros() -> None:
     need("rosmaster")
-    for module in ("rospy", "nav_msgs.msg", "tf2_msgs.msg", "rosgraph_msgs.msg", "std_srvs.srv", "rosbag"):
-        need_module(module)
+    need_module("rospy", "nav_msgs.msg", "tf2_msgs.msg", "rosgraph_msgs.msg", "std_srvs.srv", "rosbag")
 
 
 def ros_env(tmp: Path, port: int | None = None) -> dict[str, str]:

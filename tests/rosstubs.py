@@ -11,6 +11,7 @@ Tools that are missing make a test skip, except under CI (env ``CI`` set), where
 
 from __future__ import annotations
 
+import functools
 import os
 import shutil
 import socket
@@ -35,15 +36,24 @@ def need(tool: str) -> str:
     return found
 
 
-def need_module(module: str) -> None:
-    """Skip (fail under CI) when Debian's python cannot import ``module``."""
+@functools.lru_cache(maxsize=None)
+def _importable(modules: tuple[str, ...]) -> bool:
+    """Whether Debian's python imports every one of ``modules``: asked once per test process (a Python start and
+    rospy's imports each time cost about a second of CPU, and every ROS test asks)."""
+    return subprocess.run([SYSTEM_PYTHON, "-c", f"import {', '.join(modules)}"], capture_output=True).returncode == 0
+
+
+def need_module(*modules: str) -> None:
+    """Skip (fail under CI) when Debian's python cannot import one of ``modules``, named."""
     need(SYSTEM_PYTHON)
-    proc = subprocess.run([SYSTEM_PYTHON, "-c", f"import {module}"], capture_output=True, text=True)
-    if proc.returncode != 0:
-        message = f"{SYSTEM_PYTHON} cannot import {module} (install python3-{module.split('.')[0]})"
-        if os.environ.get("CI"):
-            pytest.fail(message)
-        pytest.skip(message)
+    if _importable(modules):
+        return
+    for module in modules:
+        if not _importable((module,)):
+            message = f"{SYSTEM_PYTHON} cannot import {module} (install python3-{module.split('.')[0]})"
+            if os.environ.get("CI"):
+                pytest.fail(message)
+            pytest.skip(message)
 
 
 def ros_env(tmp: Path, **extra: str) -> dict[str, str]:
