@@ -21,6 +21,7 @@ import pytest
 from conftest import CliRunner
 
 from conftest import REPO
+from rosstubs import free_port
 from worldgen.cli import main
 
 README = (REPO / "README.md").read_text(encoding="utf-8")
@@ -102,8 +103,9 @@ def reader_env(tmp_path) -> tuple[Path, dict[str, str]]:
     env = {k: v for k, v in os.environ.items()
            if not k.startswith("ROS_") and k not in ("TURTLEBOT3_MODEL", "VIRTUAL_ENV", "PWD", "CMAKE_PREFIX_PATH")}
     env.update(HOME=str(home), PATH=f"{bin_dir}{os.pathsep}{env.get('PATH', '')}", PYTHONPATH=str(REPO),
-               ROS_HOME=str(home / ".ros"), MPLBACKEND="Agg")
-    return work, env
+               ROS_HOME=str(home / ".ros"), MPLBACKEND="Agg",
+               ROS_MASTER_URI=f"http://127.0.0.1:{free_port()}")   # `worldgen sim`'s master: not 11311, which
+    return work, env                                                # another test (worker) may be using
 
 
 def test_every_readme_command_runs_as_written(reader_env):

@@ -12,6 +12,7 @@ robot's pose.
 """
 
 import json
+import statistics
 import sys
 import time
 
@@ -91,7 +92,8 @@ def main(seconds, out, ns="/", compressed=False):
     last = max(got["raw"]) if got["raw"] else None
     np.savez(out, image=got["raw"][last] if last is not None else np.zeros(0),
              raw=got["raw"][both[-1]] if both else np.zeros(0), jpeg=got["jpeg"][both[-1]] if both else np.zeros(0))
-    rate = (len(stamps) - 1) / (stamps[-1] - stamps[0]) if len(stamps) > 2 and stamps[-1] > stamps[0] else None
+    gaps = [b - a for a, b in zip(stamps, stamps[1:])]   # the publisher's period: the median gap, whatever is dropped
+    rate = 1.0 / statistics.median(gaps) if len(gaps) > 1 and statistics.median(gaps) > 0 else None
     print(json.dumps({"count": len(stamps), "rate": rate, "image": got.get("image"), "info": got.get("info"),
                       "info_count": got.get("info_count", 0), "format": got.get("format"),
                       "gaps": sorted(set(round((b - a) * 240) for a, b in zip(stamps, stamps[1:]))),

@@ -1,13 +1,15 @@
 #!/usr/bin/env python3
 """Test probe for `worldgen sim`: listens to what the simulator publishes, or drives it, and prints one JSON line.
 
-    probe.py topics SECONDS        message counts, rates (from header stamps, simulated time) and first messages
+    probe.py topics SECONDS        message counts, rates (from header stamps, simulated time: one over the median
+                                   gap, the publisher's period, whatever a loaded machine drops) and first messages
     probe.py drive V W SECONDS     cmd_vel (V, W) for SECONDS of simulated time, then stop; odometry before/after
     probe.py reset                 drive 1 s, call /gazebo/reset_world, report the pose after
 """
 
 import json
 import math
+import statistics
 import sys
 import time
 
@@ -67,8 +69,9 @@ def topics(seconds):
         time.sleep(0.01)
     rates = {}
     for name, stamps in seen.items():
-        if len(stamps) > 2 and stamps[-1] > stamps[0]:
-            rates[name] = (len(stamps) - 1) / (stamps[-1] - stamps[0])
+        gaps = [b - a for a, b in zip(stamps, stamps[1:])]
+        if len(gaps) > 1 and statistics.median(gaps) > 0:
+            rates[name] = 1.0 / statistics.median(gaps)
     counts = {name: len(s) for name, s in seen.items()}
     wall_rates = {name: (len(a) - 1) / (a[-1] - a[0]) for name, a in arrivals.items() if len(a) > 2 and a[-1] > a[0]}
     print(json.dumps({"rates": rates, "wall_rates": wall_rates, "counts": counts, "first": first,
