@@ -315,19 +315,23 @@ class _Space:
         ``r`` the point is reached at, from an outside point at distance ``d``, is not computed when ``s`` ≤ 98 %
         of ``r`` and ``d`` ≤ 99.5 % of ``r`` less 1.02 % of ``s``: a disc of radius ``s`` then fits wherever one
         of ``r`` did (GEOS's grown parts lie between 99.5 % and 101 % of the true ones), and one on the way from
-        that outside point towards ``point`` covers it. A wrong guess: the guesses are computed in the order
-        they were made up to the first wrong one, where the bisection turns the other way on its next run."""
+        that outside point towards ``point`` covers it. A wrong guess: the smaller ones are computed down to one
+        that is right; the smallest wrong one above it is where the bisection turns the other way next time
+        (the guesses only grow along the way, the lower end of the bisection)."""
         ref = None if lo in guessed else (lo, self._reach(point, lo))   # lo computed and not cutting off already
+        wrong = False
         for s in sorted(set(guessed), reverse=True):
             if ref is not None and s <= PROOF_SHRINK * ref[0] - PROOF_MARGIN and \
                     ref[1] <= 0.995 * ref[0] - 0.0102 * s - 2 * PROOF_MARGIN:
                 continue
             d = self._reach(point, s)
-            if d > s + 1e-9:   # a wrong guess: the first on the way is known then too (the bisection turns there)
-                next((t for t in guessed if self._reach(point, t) > t + 1e-9), None)
+            if d > s + 1e-9:
+                wrong = True
+                continue
+            if wrong:
                 return False
             ref = (s, d)
-        return True
+        return not wrong
 
     def plugged(self, plug) -> _Space:
         """This space with ``plug`` added to the obstacles. The same plug again (the way out the search followed,
