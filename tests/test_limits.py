@@ -16,7 +16,7 @@ from conftest import REPO, CliRunner
 
 from worldgen.cli import main
 from worldgen.core import inputs
-from worldgen.geometry import enclosure, growth, slices
+from worldgen.geometry import disc_space, enclosure, growth, slices
 from worldgen.pyread import values as pyvalues
 from worldgen.sdf import includes
 from worldgen.spec import maps, model, nodes
@@ -269,7 +269,7 @@ def test_many_boxes_give_the_same_enclosure_as_the_exact_path(monkeypatch):
     scene = read_world_text(world(walls + clutter))
     exact = enclosure.enclosure(scene, (-1.3, -1.3), 0.2)
     monkeypatch.setattr(growth, "SMALL", 3)
-    monkeypatch.setattr(enclosure, "SMALL", 3)   # as enclosure imported it
+    monkeypatch.setattr(disc_space, "SMALL", 3)   # as disc_space imported it
     monkeypatch.setattr(slices, "FAST_BOXES", 3)
     fast = enclosure.enclosure(scene, (-1.3, -1.3), 0.2)
     assert fast.enclosed is exact.enclosed is False

@@ -24,22 +24,16 @@ Plain numbers in, plain numbers out: no pybullet here, only numpy and shapely (i
 
 from __future__ import annotations
 
-import hashlib
 import math
-import threading
-from collections import OrderedDict
 from dataclasses import dataclass
 
 from ..core.scene import Scene
+from .disc_space import MANY_SHAPES, MAX_GAP, WIDTH_TOLERANCE, Space, components, obstacle_union, reaches_outside
 from .slices import SLIVER, Footprint, footprints
-from .growth import SMALL, cluster_labels, grown, unite
 
 MARGIN = 1.0           # the "outside" frame lies this far beyond the scene and the spawn
-MAX_GAP = 8.0          # openings are searched up to this wide, or up to the walls' own extent when that is more
 MAX_SEARCH = 200.0     # … but never wider than this (m): beyond it the walls do not surround the spawn
-WIDTH_TOLERANCE = 0.005  # the critical radius is bisected to half this
 MAX_GAP_ROUNDS = 6     # gaps listed at most (then: "there may be more")
-MANY_SHAPES = 2000     # past this many footprints, one gap is listed (then: "there may be more")
 
 
 @dataclass(frozen=True)
@@ -82,58 +76,6 @@ class Enclosure:
     notes: tuple[str, ...] = ()   # what was simplified on the way (a tangled mesh, a search cut short), why
 
 
-UNIONS_KEPT = 4   # unions of many footprints kept by their content (see obstacle_union)
-_UNIONS: "OrderedDict[str, object]" = OrderedDict()
-_UNIONS_LOCK = threading.Lock()
-
-
-def obstacle_union(prints: list[Footprint]):
-    """The footprints united and grown by :data:`SLIVER` (empty geometry when there are none). Many footprints:
-    the union is kept by their content (the last :data:`UNIONS_KEPT`), as the same ones come again — a world
-    checked from each of its rooms, a band of upright walls cut at the LiDAR's height and across the robot's
-    (a random 200 × 200 grid: 9 000 touching boxes, about 1.5 s a union)."""
-    import shapely
-
-    if len(prints) <= SMALL:   # few: as GEOS does it (the same region; vertex for vertex as before)
-        return shapely.union_all([p.geometry for p in prints]).buffer(SLIVER, quad_segs=2)
-    geometries = [p.geometry for p in prints]
-    key = hashlib.sha256(b"".join(shapely.to_wkb(geometries))).hexdigest()
-    with _UNIONS_LOCK:
-        if key in _UNIONS:
-            _UNIONS.move_to_end(key)
-            return _UNIONS[key]
-    united = unite(shapely.buffer(geometries, SLIVER, quad_segs=2))
-    with _UNIONS_LOCK:
-        _UNIONS[key] = united
-        while len(_UNIONS) > UNIONS_KEPT:
-            _UNIONS.popitem(last=False)
-    return united
-
-
-_FREE: "OrderedDict[tuple, tuple]" = OrderedDict()   # (id(obstacles), frame) -> (obstacles, parts, outside)
-
-
-def _free_space(obstacles, frame) -> tuple:
-    """(the parts of the free space in ``frame``, the one touching the frame): kept for the last
-    :data:`UNIONS_KEPT` obstacle unions (the same object, from :func:`obstacle_union`, for each room checked)."""
-    key = (id(obstacles), tuple(frame.bounds))
-    with _UNIONS_LOCK:
-        kept = _FREE.get(key)
-    if kept is not None and kept[0] is obstacles:
-        return kept[1], kept[2]
-    parts, outside = _parts_and_outside(frame.difference(obstacles), frame)
-    with _UNIONS_LOCK:
-        _FREE[key] = (obstacles, parts, outside)   # holding the obstacles keeps their id theirs
-        while len(_FREE) > UNIONS_KEPT:
-            _FREE.popitem(last=False)
-    return parts, outside
-
-
-def _parts_and_outside(free, frame) -> tuple:
-    parts = _components(free)
-    return parts, next((c for c in parts if _reaches_outside(c, frame)), None)
-
-
 def _frame(obstacles, spawn, margin: float):
     import shapely
 
@@ -145,255 +87,6 @@ def _frame(obstacles, spawn, margin: float):
     return shapely.box(min(xs) - margin, min(ys) - margin, max(xs) + margin, max(ys) + margin)
 
 
-def _components(geometry) -> list:
-    import shapely
-
-    return [p for p in shapely.get_parts(geometry) if p.geom_type == "Polygon" and p.area > 0]
-
-
-def _reaches_outside(component, frame) -> bool:
-    return component is not None and component.exterior.distance(frame.exterior) < 1e-9
-
-
-class _Family:
-    """What the spaces of one obstacle union share, plugged or not: the unplugged obstacles grown per radius, the
-    radius first asked for under each rounded key (the one they are grown by), and, for very many obstacles, their
-    parts in an STRtree (for :meth:`_Space.closed_near`)."""
-
-    def __init__(self, base):
-        import shapely
-
-        self.base = base
-        self.grown: dict[float, object] = {}
-        self.radii: dict[float, float] = {}
-        self.parts = shapely.get_parts(base)
-        self.many = len(self.parts) > SMALL
-        self.local = len(self.parts) > MANY_SHAPES   # so many that a window round a point is worth a try
-        self.tree = shapely.STRtree(self.parts) if self.local else None
-        self.areas = shapely.area(shapely.envelope(self.parts)) if self.local else None
-
-
-LOCAL_REACH = 0.25     # m: the first window round a point reaches this far beyond the radius (then 4, 16, … times)
-LOCAL_FEW = 64         # a window holding more parts than this is tried with its largest ones first (walls first)
-LOCAL_SHARE = 8        # … and with all of them only while they are at most this share of all (else: the whole
-LOCAL_MOST = 300       # space decides) and at most this many
-PROOF_SHRINK = 0.98    # the parts grown by this share of the radius lie inside the ones grown by all of it (below)
-PROOF_MARGIN = 1e-7    # m: more than any rounding of the union and difference, less than anything decided by it
-
-
-class _Space:
-    """Where the centre of a disc of radius ``r`` can be (the free space shrunk by ``r``), per radius (cached),
-    and which part of it is the outside (the part touching the frame).
-
-    A disc of radius ``r`` passes an opening exactly when the opening is wider than ``2·r``, whatever the walls'
-    thickness, so the radius at which a point is cut off from the outside measures the widest way out. A point
-    is reached from the outside at radius ``r`` when an outside disc covers it.
-    """
-
-    def __init__(self, obstacles, frame, plugs: tuple = (), base: _Space | None = None, limit: float = MAX_GAP):
-        self.obstacles, self.frame, self.plugs, self.limit = obstacles, frame, plugs, limit
-        self.family = _Family(obstacles) if base is None else base.family   # the obstacles before any plug
-        self.base = self.family.base
-        self._cache: dict[float, tuple] = {}
-        self._radii: dict[float, float] = {}   # the radius first asked for under each key: the one used
-        self._shown: dict[tuple, bool] = {}    # (point, key) -> whether closed_near showed it cut off
-        self._plugged: dict[int, tuple] = {}   # id(plug) -> (plug, the space it was first added to this one in)
-
-    def radius(self, r: float) -> tuple[float, float]:
-        """(the cache key of ``r``, the radius that stands for every radius of that key: the first asked for)."""
-        key = round(r, 6)
-        return key, self._radii.setdefault(key, r)
-
-    def grown(self, r: float):
-        """The obstacles (plugs included) grown by ``r``. Many obstacles: the unplugged ones are grown once per
-        radius for every plugged space, the plugs added to that. Few: GEOS's buffer of them all."""
-        import shapely
-
-        if not self.family.many:
-            return self.obstacles.buffer(r, quad_segs=8) if r > 0 else self.obstacles
-        key = round(r, 6)
-        if key not in self.family.grown:
-            self.family.grown[key] = grown(self.base, self.family.radii.setdefault(key, r), quad_segs=8)
-        if not self.plugs:
-            return self.family.grown[key]
-        plugs = shapely.buffer(list(self.plugs), r, quad_segs=8) if r > 0 else list(self.plugs)
-        return unite([*shapely.get_parts(self.family.grown[key]), *plugs])
-
-    def at(self, r: float):
-        key, r = self.radius(r)
-        if key not in self._cache:
-            if key == 0 and not self.plugs:   # the free space itself: the same for every room of a world
-                self._cache[key] = _free_space(self.obstacles, self.frame)
-            else:
-                self._cache[key] = _parts_and_outside(self.frame.difference(self.grown(r)), self.frame)
-        return self._cache[key]
-
-    def cut_off(self, point: tuple[float, float], r: float, guessed: list | None = None) -> bool:
-        """Whether no disc of radius ``r`` from the outside covers ``point``: from the space at ``r`` (:meth:`at`),
-        unless the obstacles near the point show it cut off (:meth:`closed_near`, very many obstacles). With
-        ``guessed`` (a bisection), a radius they do not show cut off, not computed yet, is taken as not cutting off
-        and noted there, to be confirmed (:meth:`_confirmed`)."""
-        key, r = self.radius(r)
-        if self.family.many and (key or self.plugs):   # the radius the obstacles are grown by under this key
-            self.family.radii.setdefault(key, r)
-        if key not in self._cache and self.family.local and r > 0:
-            if (point, key) not in self._shown:
-                self._shown[(point, key)] = self.closed_near(point, r)
-            if self._shown[(point, key)]:
-                return True
-            if guessed is not None:
-                guessed.append(r)
-                return False
-        return self._reach(point, r) > r + 1e-9
-
-    def _reach(self, point: tuple[float, float], r: float) -> float:
-        """How far ``point`` is from the outside at radius ``r`` (inf when nothing is outside)."""
-        import shapely
-
-        outside = self.at(r)[1]
-        return math.inf if outside is None else outside.distance(shapely.Point(point))
-
-    def closed_near(self, point: tuple[float, float], r: float) -> bool:
-        """True when the obstacles near ``point`` (more than :data:`MANY_SHAPES` parts) already cut it off at radius
-        ``r``, as :meth:`cut_off` finds from the whole space; False when that is not shown here (:meth:`at` decides
-        then). Shown by :func:`_closed_by` with the parts in a window round the point, 4 times wider each try (its
-        largest parts first), while it holds at most 1/:data:`LOCAL_SHARE` of them: what the parts of a window
-        close off, all of them do."""
-        import numpy as np
-        import shapely
-
-        family = self.family
-        if r <= 0 or not family.local:
-            return False
-        (x, y), h = point, r + LOCAL_REACH
-        x0, y0, x1, y1 = self.base.bounds
-        while True:
-            near = np.sort(family.tree.query(shapely.box(x - h, y - h, x + h, y + h)))
-            if len(near) > LOCAL_FEW:
-                largest = np.sort(near[np.argsort(-family.areas[near], kind="stable")[:LOCAL_FEW]])
-                if _closed_by([*family.parts[largest], *self.plugs], point, r):
-                    return True
-            if LOCAL_SHARE * len(near) > len(family.parts) or len(near) > LOCAL_MOST:
-                return False
-            if _closed_by([*family.parts[near], *self.plugs], point, r):
-                return True
-            if x - h <= x0 and y - h <= y0 and x + h >= x1 and y + h >= y1:
-                return False
-            h = r + 4 * (h - r)
-
-    def critical_radius(self, point) -> tuple[float, float] | None:
-        """The radii just below and just above (to :data:`WIDTH_TOLERANCE`/2) the one that cuts ``point``
-        off; None when even ``limit``/2 does not, (0, 0) when it is cut off already.
-
-        Bisected with the radii that do not cut the point off guessed (all but the last need no space of their
-        own), then confirmed; a guess found wrong is known then, and the bisection runs again: the radii are the
-        ones each decided in turn from its own space would give."""
-        while True:
-            guessed: list = []
-            bounds = self._bisect(point, guessed)
-            if bounds is None or not guessed or self._confirmed(point, guessed, bounds[0]):
-                return bounds
-
-    def _bisect(self, point, guessed: list) -> tuple[float, float] | None:
-        if self.cut_off(point, 0.0):
-            return 0.0, 0.0
-        if not self.cut_off(point, self.limit / 2):   # a disc that passes there passes every smaller opening too
-            return None
-        lo, hi = 0.0, 0.05
-        while not self.cut_off(point, hi, guessed):
-            if hi >= self.limit / 2:
-                return None
-            lo, hi = hi, min(hi * 2, self.limit / 2)
-        while hi - lo > WIDTH_TOLERANCE / 2:
-            mid = (lo + hi) / 2
-            lo, hi = (lo, mid) if self.cut_off(point, mid, guessed) else (mid, hi)
-        return lo, hi
-
-    def _confirmed(self, point, guessed: list, lo: float) -> bool:
-        """Whether every radius in ``guessed`` indeed does not cut ``point`` off. The largest is computed (the
-        bisection's lower end ``lo``: its space is needed anyway). A smaller radius ``s`` below a computed one
-        ``r`` the point is reached at, from an outside point at distance ``d``, is not computed when ``s`` ≤ 98 %
-        of ``r`` and ``d`` ≤ 99.5 % of ``r`` less 1.02 % of ``s``: a disc of radius ``s`` then fits wherever one
-        of ``r`` did (GEOS's grown parts lie between 99.5 % and 101 % of the true ones), and one on the way from
-        that outside point towards ``point`` covers it. A wrong guess: the smaller ones are computed down to one
-        that is right; the smallest wrong one above it is where the bisection turns the other way next time
-        (the guesses only grow along the way, the lower end of the bisection)."""
-        ref = None if lo in guessed else (lo, self._reach(point, lo))   # lo computed and not cutting off already
-        wrong = False
-        for s in sorted(set(guessed), reverse=True):
-            if ref is not None and s <= PROOF_SHRINK * ref[0] - PROOF_MARGIN and \
-                    ref[1] <= 0.995 * ref[0] - 0.0102 * s - 2 * PROOF_MARGIN:
-                continue
-            d = self._reach(point, s)
-            if d > s + 1e-9:
-                wrong = True
-                continue
-            if wrong:
-                return False
-            ref = (s, d)
-        return not wrong
-
-    def plugged(self, plug) -> _Space:
-        """This space with ``plug`` added to the obstacles. The same plug again (the way out the search followed,
-        closed for the next round): a new space, but the obstacles united and the free space among them (radius
-        0, the first a search asks for) as computed the first time."""
-        import shapely
-
-        kept = self._plugged.get(id(plug))
-        if kept is not None and kept[0] is plug:
-            space = _Space(kept[1].obstacles, self.frame, kept[1].plugs, self, self.limit)
-            if kept[1]._radii.get(0.0) == 0.0 and 0.0 in kept[1]._cache:
-                space._radii[0.0], space._cache[0.0] = 0.0, kept[1]._cache[0.0]
-            return space
-        parts = shapely.get_parts(self.obstacles)
-        united = shapely.union_all([self.obstacles, plug]) if len(parts) <= SMALL else unite([*parts, plug])
-        space = _Space(united, self.frame, (*self.plugs, plug), self, self.limit)
-        self._plugged[id(plug)] = (plug, space)   # holding the plug keeps its id its own
-        return space
-
-
-def _closed_by(parts: list, point: tuple[float, float], r: float) -> bool:
-    """Whether ``parts`` (some of the obstacles, plugs included), each grown by :data:`PROOF_SHRINK` of ``r``, cut
-    ``point`` off at ``r``: every free piece within ``r`` of it lies in a hole of the union of some of them (a
-    cluster of grown parts that meet). All obstacles grown by ``r`` then close each such piece off too, and no
-    disc centre within ``r`` of the point is outside: a part grown by all of ``r`` covers it grown by that much
-    less with room to spare (GEOS's arcs lie within 0.5 % of the radius inside the true ones, its simplification
-    of a part's outline adds at most 1 % of it), whatever the rounding; a piece that nearly reaches ``r`` counts."""
-    import numpy as np
-    import shapely
-
-    g = r * PROOF_SHRINK - PROOF_MARGIN
-    if g <= 0 or not parts:
-        return False
-    reach = r + 1e-9 + PROOF_MARGIN
-    x, y = point
-    box, here = shapely.box(x - reach, y - reach, x + reach, y + reach), shapely.Point(point)
-    grown_parts = shapely.buffer(np.asarray(parts, dtype=object), g, quad_segs=8)
-    free = box.difference(shapely.union_all(grown_parts[shapely.intersects(grown_parts, box)]))
-    pieces = [c for c in _components(free) if c.distance(here) <= reach]
-    if not pieces:
-        return True
-    label = cluster_labels(grown_parts)
-    bounds = shapely.bounds(grown_parts)
-    held: dict = {}
-    for piece in pieces:
-        q = piece.representative_point()
-        inside = (bounds[:, 0] < q.x) & (bounds[:, 1] < q.y) & (bounds[:, 2] > q.x) & (bounds[:, 3] > q.y)
-        if not any(_in_hole(held, grown_parts, label, k, q) for k in np.unique(label[inside])):
-            return False
-    return True
-
-
-def _in_hole(held: dict, grown_parts, label, k: int, q) -> bool:
-    """Whether ``q`` lies, clear of it, in a hole of the union of the grown parts labelled ``k`` (kept in
-    ``held``)."""
-    import shapely
-
-    if k not in held:
-        held[k] = shapely.get_parts(shapely.union_all(grown_parts[label == k]))
-    return any(shapely.Polygon(p.exterior).contains(q) and p.distance(q) > PROOF_MARGIN for p in held[k])
-
-
 @dataclass
 class _Way:
     gap: Gap
@@ -402,7 +95,7 @@ class _Way:
     real: bool                   # the point it was found for lies in a region a disc of that size can be in
 
 
-def _neck(space: _Space, point: tuple[float, float], lo: float, hi: float, prints: list[Footprint]
+def _neck(space: Space, point: tuple[float, float], lo: float, hi: float, prints: list[Footprint]
           ) -> _Way | None:
     """The narrowest place between ``point`` and the outside. At radius ``hi`` the point is cut off, at ``lo``
     it is not: the neck is the bit of disc-centre space that exists at ``lo`` and joins the point's side to the
@@ -439,7 +132,7 @@ def _neck(space: _Space, point: tuple[float, float], lo: float, hi: float, print
     return _way(space, ends, prints, a, x, bool(side))
 
 
-def _corridor_end(space: _Space, ends, mouth, prints: list[Footprint]) -> _Way | None:
+def _corridor_end(space: Space, ends, mouth, prints: list[Footprint]) -> _Way | None:
     """The way out at the end of a long passage where it opens into the outside (``mouth``: the points either side
     of that end), when the passage is a corridor: the same two walls either side at its middle (``ends``) and at
     that end. Otherwise None (a passage among many shapes, say, whose middle names the way out)."""
@@ -453,7 +146,7 @@ def _corridor_end(space: _Space, ends, mouth, prints: list[Footprint]) -> _Way |
     return _way(space, there, prints, a, x, True)
 
 
-def _way(space: _Space, ends, prints: list[Footprint], a, x, real: bool) -> _Way:
+def _way(space: Space, ends, prints: list[Footprint], a, x, real: bool) -> _Way:
     """The way out between the wall points ``ends``, crossed from ``a`` (the point's side) to ``x`` (outside)."""
     import shapely
 
@@ -477,7 +170,7 @@ def _resting(obstacles, centre, here, slack: float):
     from shapely.ops import nearest_points
 
     reach = obstacles.distance(centre) + slack
-    pieces = sorted(_components(obstacles.intersection(centre.buffer(reach, quad_segs=16))),
+    pieces = sorted(components(obstacles.intersection(centre.buffer(reach, quad_segs=16))),
                     key=lambda p: p.distance(centre))
     if len(pieces) < 2:
         return None
@@ -490,13 +183,13 @@ def _resting(obstacles, centre, here, slack: float):
     return None
 
 
-def _side(space: _Space, here, r: float) -> list:
+def _side(space: Space, here, r: float) -> list:
     """The parts of disc-centre space at radius ``r``, other than the outside, whose discs cover ``here``."""
     parts, outside = space.at(r)
     return [c for c in parts if c is not outside and c.distance(here) <= r + 1e-9]
 
 
-def _mouth(space: _Space, here, lo: float, hi: float, outside):
+def _mouth(space: Space, here, lo: float, hi: float, outside):
     """Where the point's way out is when no disc of radius ``hi`` fits on its side at all: the discs a little
     smaller that reach it come down a channel (a corridor, a room missing a wall) too narrow for the larger ones,
     and the way out is where that channel opens into the outside (the corridor's open end), however far from the
@@ -510,7 +203,7 @@ def _mouth(space: _Space, here, lo: float, hi: float, outside):
     reached = space.at(r)[1]
     if reached is not None:
         rest = reached.difference(outside.buffer(hi - r + 1e-6, quad_segs=4))
-        channel = [p for p in _components(rest) if p.distance(here) <= r + 1e-9]
+        channel = [p for p in components(rest) if p.distance(here) <= r + 1e-9]
         if channel:
             a, x = nearest_points(shapely.union_all(channel), outside)
             return a, x
@@ -531,7 +224,7 @@ def _channel(parts_lo, side, outside, d: float, width: float):
 
     grown_side, grown_out = side.buffer(d + 1e-6, quad_segs=4), outside.buffer(d + 1e-6, quad_segs=4)
     rest = shapely.union_all(parts_lo).difference(shapely.union_all([grown_side, grown_out]))
-    bridges = [p for p in _components(rest)
+    bridges = [p for p in components(rest)
                if p.distance(grown_side) < 1e-5 and p.distance(grown_out) < 1e-5]
     if not bridges:
         return None
@@ -586,7 +279,7 @@ def _gap_ends(obstacles, neck, outward, limit: float = MAX_GAP):
     return (e1.x, e1.y), (e2.x, e2.y)
 
 
-def _beyond(space: _Space, gap: Gap, outward, step: float = 0.05):
+def _beyond(space: Space, gap: Gap, outward, step: float = 0.05):
     """A free point ``step`` m past the gap, on its outside."""
     import shapely
 
@@ -607,8 +300,8 @@ MAX_DEPTH = 3   # how far the search follows a way out into further enclosed reg
 MAX_ANCHOR = 4   # how many times the search may move deeper into the room from a point in a corner
 
 
-def _anchored(space: _Space, point) -> tuple:
-    """The point the way out is searched from, and the radii that cut it off (see :meth:`_Space.critical_radius`).
+def _anchored(space: Space, point) -> tuple:
+    """The point the way out is searched from, and the radii that cut it off (see :meth:`Space.critical_radius`).
 
     A point near a corner is cut off at the radius of the discs that still fit into the corner, whatever the
     room's way out: no disc of the larger radius fits on its side at all. The search then moves to the centre of
@@ -637,7 +330,7 @@ def _anchored(space: _Space, point) -> tuple:
     return point, bounds
 
 
-def _way_out(space: _Space, point, prints: list[Footprint], depth: int = 0, max_depth: int = MAX_DEPTH
+def _way_out(space: Space, point, prints: list[Footprint], depth: int = 0, max_depth: int = MAX_DEPTH
              ) -> _Way | None:
     """The widest way out from ``point``, or None when nothing encloses it at any scale up to the space's limit.
 
@@ -706,7 +399,7 @@ def analyse(prints: list[Footprint], spawn: tuple[float, float], height: float) 
         return Enclosure(spawn, height, enclosed=None, inside=prints[closest].label, nearest=nearest)
     limit = search_limit(obstacles, spawn)
     frame = _frame(obstacles, spawn, MARGIN + limit)
-    space = _Space(obstacles, frame, limit=limit)
+    space = Space(obstacles, frame, limit=limit)
     if space.cut_off(spawn, 0.0):
         region = next(c for c in space.at(0.0)[0] if c.covers(point))
         return Enclosure(spawn, height, enclosed=True, region_area=region.area,
@@ -732,7 +425,7 @@ ROOM_MIN_AREA = 0.25   # m²: closed pockets smaller than this (inside a pillar,
 
 
 def _closed_regions(parts, frame, point) -> tuple[tuple[float, float, float, float], ...]:
-    rooms = [c for c in parts if not _reaches_outside(c, frame) and c.area >= ROOM_MIN_AREA]
+    rooms = [c for c in parts if not reaches_outside(c, frame) and c.area >= ROOM_MIN_AREA]
     rooms.sort(key=lambda c: (c.distance(point), c.bounds))
     return tuple(tuple(round(v, 4) for v in c.bounds) for c in rooms)
 

@@ -18,7 +18,7 @@ from typing import Callable, Dict, Hashable, Tuple, TypeVar
 T = TypeVar("T")
 
 _MEMOS: Dict[int, Tuple[weakref.ref, dict]] = {}   # id(scene) -> (a weak reference to it, its results)
-_LOCK = threading.Lock()   # validate -j N checks scenes from several threads
+_LOCK = threading.RLock()   # validate -j N checks scenes from several threads; a scene collected while it is held
 
 
 def _memo(scene) -> dict:
@@ -29,9 +29,16 @@ def _memo(scene) -> dict:
         if entry is not None and entry[0]() is scene:
             return entry[1]
         memo: dict = {}
-        # the callback runs before the scene's memory (and so its id) can be reused
-        _MEMOS[key] = (weakref.ref(scene, lambda _, key=key: _MEMOS.pop(key, None)), memo)
+        # the callback runs before the scene's memory (and so its id) can be reused; it drops only its own entry
+        _MEMOS[key] = (weakref.ref(scene, lambda ref, key=key: _forget(key, ref)), memo)
         return memo
+
+
+def _forget(key: int, ref: weakref.ref) -> None:
+    """Drops the results kept under ``key`` if they are still those of the scene ``ref`` referred to."""
+    with _LOCK:
+        if key in _MEMOS and _MEMOS[key][0] is ref:
+            del _MEMOS[key]
 
 
 def remembered(scene, key: Hashable, make: Callable[[], T]) -> T:
