@@ -193,14 +193,14 @@ def markers_of(module: str, name: str, fixtures=()) -> set[str]:
     return found
 
 
-# The longest modules, longest first (seconds of a run with ``--durations=0`` under ``-n 3``), so that the README's
+# The longest modules, longest first (by their seconds with ``--durations=0`` under ``-n 3``), so that the README's
 # parallel run (``-n 3 --dist loadfile``: a module stays on one worker, its fixtures made once) starts them first
 # and no long module starts last, alone. The rest follow in their usual order.
-LONGEST_FIRST = ("test_readme.py",             # 300 s: every README command, the first one's venv install
-                 "test_ros2_live.py",          # 180 s: students' rclpy nodes against the DDS transport
-                 "test_bridge_line.py",        # 140 s: camera line following, 120 simulated seconds each
-                 "test_safe_writes.py",        # 125 s: writers killed mid-write, again and again
-                 "test_bridge_worlds.py",      # 120 s: 40 runs across generated worlds
+LONGEST_FIRST = ("test_readme.py",             # every README command; the first one's venv install
+                 "test_ros2_live.py",          # students' rclpy nodes against the DDS transport
+                 "test_bridge_line.py",        # camera line following, 80 simulated seconds a lap
+                 "test_safe_writes.py",        # writers killed mid-write, again and again
+                 "test_bridge_worlds.py",      # 24 runs across generated worlds
                  "test_bridge_readme.py", "test_bridge_run.py", "test_bridge_camera.py", "test_bridge_tasks.py",
                  "test_run_leftovers.py", "test_bridge_sim.py", "test_bridge_params.py", "test_bridge_robots.py",
                  "test_validate.py", "test_bridge_runtime.py", "test_ros_tools.py")

@@ -18,7 +18,8 @@ from typing import Callable, Dict, Hashable, Tuple, TypeVar
 T = TypeVar("T")
 
 _MEMOS: Dict[int, Tuple[weakref.ref, dict]] = {}   # id(scene) -> (a weak reference to it, its results)
-_LOCK = threading.RLock()   # validate -j N checks scenes from several threads; a scene collected while it is held
+_LOCK = threading.RLock()   # validate -j N checks scenes from several threads; reentrant: a scene collected
+                            # while the lock is held drops its results (_forget) under it
 
 
 def _memo(scene) -> dict:
