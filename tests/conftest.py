@@ -203,7 +203,12 @@ LONGEST_FIRST = ("test_readme.py",             # every README command; the first
                  "test_bridge_worlds.py",      # 24 runs across generated worlds
                  "test_bridge_readme.py", "test_bridge_run.py", "test_bridge_camera.py", "test_bridge_tasks.py",
                  "test_run_leftovers.py", "test_bridge_sim.py", "test_bridge_params.py", "test_bridge_robots.py",
-                 "test_validate.py", "test_bridge_runtime.py", "test_ros_tools.py")
+                 "test_validate.py", "test_bridge_runtime.py", "test_ros_tools.py", "test_ros2_packages.py",
+                 "test_limits.py", "test_generate.py", "test_view_browser.py", "test_bridge_gazebo.py",
+                 "test_ros2_dds.py", "test_absurd_coordinates.py", "test_bridge_view.py", "test_validate_corpus.py",
+                 "test_grading.py", "test_ros2_world.py", "test_bridge_scans.py", "test_bounded_meshes.py",
+                 "test_ros2_msgs.py", "test_bridge_clock.py", "test_drive.py", "test_layout.py", "test_ros1_env.py",
+                 "test_wheel.py")
 
 
 def pytest_configure(config):

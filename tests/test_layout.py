@@ -379,3 +379,11 @@ def test_what_is_left_lazy_is_still_there():
     """Every entry of LAZY_WORLDGEN is an import that is still made inside a function."""
     made = {(module_name(p), target) for p in PACKAGE.rglob("*.py") for _, target in late_imports(p)}
     assert sorted(set(LAZY_WORLDGEN) - made) == []
+
+
+def test_the_start_order_names_modules_that_exist():
+    """conftest's LONGEST_FIRST (the parallel run's start order) names test modules that are there, once each."""
+    from conftest import LONGEST_FIRST
+
+    here = {p.name for p in Path(__file__).parent.glob("test_*.py")}
+    assert sorted(set(LONGEST_FIRST) - here) == [] and len(set(LONGEST_FIRST)) == len(LONGEST_FIRST)
