@@ -87,9 +87,18 @@ def _carve(cols: int, rows: int, rng: Rng) -> Set[Cell]:
                                                        (c[0], c[1] - 1))))
         cell = rng.choice(edge)
         rest = cells - {cell}
-        if len(rest) >= 3 and _connected(rest) and not _pinched(rest, cols, rows):
+        if len(rest) >= 3 and _connected(rest) and not _pinched(rest, cols, rows) and not _rectangle(rest):
             cells = rest
+    if _rectangle(cells):   # nothing taken away: a corner goes (a rectangle is convex)
+        cells = cells - {rng.choice([(0, 0), (cols - 1, 0), (0, rows - 1), (cols - 1, rows - 1)])}
     return cells
+
+
+def _rectangle(cells: Set[Cell]) -> bool:
+    """Whether the cells fill their bounding rectangle (a whole row or column carved away leaves one)."""
+    cols = {i for i, _ in cells}
+    rows = {j for _, j in cells}
+    return len(cells) == (max(cols) - min(cols) + 1) * (max(rows) - min(rows) + 1)
 
 
 def _outline(cells: Set[Cell]) -> List[Tuple[int, int]]:
