@@ -64,7 +64,7 @@ def centre_space(scene, robot: str):
     import shapely
 
     from worldgen.check.checks import CLIMB, robot_body
-    from worldgen.geometry.enclosure import obstacle_union
+    from worldgen.geometry.disc_space import obstacle_union
     from worldgen.geometry.slices import footprints_between
 
     body = robot_body(robot)

@@ -18,7 +18,7 @@ from typing import Sequence
 from ..core.errors import InputError
 from ..core.spawnpose import Pose
 from ..core.numbers import format_number
-from .enclosure import obstacle_union
+from .disc_space import obstacle_union
 from .slices import footprints_between
 
 # Radius of the disc that holds each robot's footprint around base_footprint: the farthest corner of the ROBOTIS

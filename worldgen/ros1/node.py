@@ -285,8 +285,9 @@ def main(argv: list[str]) -> int:
     name of the robot the trace is about), no_hit, rate (0 = max), duration (s or null), trace (file or null), bag
     (file or null), start_file (null: start at once; else once the file exists), up_param (null, or [parameter,
     token]: join the master once it holds the token, see :func:`wait_for_master`), joined_file (null, or a file
-    made once it has joined the master), person (null or the loop), set_sim_time (bool), gazebo_msgs (a folder to import gazebo_msgs from, or null), record_scans (bool: every robot's trace gets
-    ``lidar`` and every published scan under ``ranges``, see :meth:`.RobotTopics.publish_scan`)."""
+    made once it has joined the master), person (null or the loop), set_sim_time (bool), gazebo_msgs (a folder to
+    import gazebo_msgs from, or null), record_scans (bool: every robot's trace gets ``lidar`` and every published
+    scan under ``ranges``, see :meth:`.RobotTopics.publish_scan`)."""
     keep_freed_memory()
     if not wait_for_file(Path(argv[0])):
         return 0   # stopped, or no config, before the run began: nothing to write
