@@ -319,6 +319,12 @@ CAMPAIGN = [
     Case("grid-random-400", lambda t: ["validate", str(_random_grid(t, 400))], REFUSAL, (2,)),
     Case("yaml-plain-1.1MB", lambda t: ["build", str(_plain_big_yaml(t)), "-o", str(t / "o")], BOUNDED, (2,)),
     Case("folder-link-to-root", _link_to_root, BOUNDED, (0, 1)),
+] + [   # each generator at the largest footprint and its finest grain (the arena's carving once took minutes)
+    Case(f"generate-{kind}-200m", lambda t, kind=kind, flags=flags: [
+        "generate", kind, "--seed", "3", "--size", "200x200", *flags, "-o", str(t / "g")], BOUNDED, (0,))
+    for kind, flags in (("arena", ("--robot", "burger", "--min-width", "0.85")),
+                        ("clutter", ("--robot", "burger", "--density", "0.3")),
+                        ("maze", ("--robot", "burger")), ("rooms", ("--robot", "burger")), ("track", ()))
 ]
 
 

@@ -2,8 +2,10 @@
 
 ``right``: the footprint is a grid of square cells ``min_width`` across; cells are taken away from its edge one at a
 time (each time only if the rest stays one piece, without a hole and without two cells meeting only at a corner), so
-the outline stays one simple right-angled polygon and no part of the floor is narrower than a cell. At least one
-cell goes, so the room is never a plain rectangle. ``free``: a polygon of 6 to 10 corners round the footprint's
+the outline stays one simple right-angled polygon and no part of the floor is narrower than a cell. The outline's
+convex hull is at least :data:`NOTCH` per cent larger than the floor, so the room is never a rectangle nor one with
+a token notch: when the carving leaves less (one corner cell of a large grid), the room is the grid less a corner
+block a third of each side across. ``free``: a polygon of 6 to 10 corners round the footprint's
 centre, each at a random angle and distance (a star-shaped polygon never crosses itself), kept when it has a corner
 pointing in (by 15° at least), no corner sharper than :data:`MIN_ANGLE`, no wall shorter than :data:`MIN_EDGE` and
 no two walls that do not meet closer than ``min_width``; otherwise drawn again (a right-angled L after :data:`TRIES`
@@ -13,6 +15,7 @@ ahead (another place is drawn, a few times, until one has such a wall).
 
 from __future__ import annotations
 
+import bisect
 import math
 from dataclasses import replace
 from typing import List, Sequence, Set, Tuple
@@ -34,6 +37,7 @@ REFLEX_COS = sin_cos(MIN_REFLEX - PI)[1]
 TRIES = 200
 AHEAD = (1.0, 3.3)
 SPAWN_TRIES = 12
+NOTCH = 3   # %: a right-angled outline's convex hull is at least this much larger than its floor
 Cell = Tuple[int, int]
 
 
@@ -54,51 +58,103 @@ def resolve(options: ArenaOptions, space: RobotSpace) -> ArenaOptions:
 
 # ------------------------------------------------------------------------------------------------ right-angled
 
-def _pinched(cells: Set[Cell], cols: int, rows: int) -> bool:
-    """Whether two cells meet only at a corner anywhere (the outline would touch itself there)."""
-    for i in range(-1, cols):
-        for j in range(-1, rows):
-            a, b, c, d = (i, j) in cells, (i + 1, j) in cells, (i, j + 1) in cells, (i + 1, j + 1) in cells
-            if (a and d and not b and not c) or (b and c and not a and not d):
-                return True
-    return False
+RING = ((0, 1), (1, 1), (1, 0), (1, -1), (0, -1), (-1, -1), (-1, 0), (-1, 1))   # round a cell, N first
 
 
-def _connected(cells: Set[Cell]) -> bool:
-    start = min(cells)
-    seen, todo = {start}, [start]
-    while todo:
-        i, j = todo.pop()
-        for n in ((i + 1, j), (i - 1, j), (i, j + 1), (i, j - 1)):
-            if n in cells and n not in seen:
-                seen.add(n)
-                todo.append(n)
-    return len(seen) == len(cells)
+class _Carving:
+    """A grid of cells being carved from its edge, kept valid: one piece (four-connected), no hole, no two cells
+    meeting only at a corner. Each removal is judged from the cell's eight neighbours (for such a set, taking a
+    cell away keeps it one piece exactly when its neighbours left form one run round it), so carving is linear in
+    the cells taken, however large the grid."""
+
+    def __init__(self, cols: int, rows: int):
+        self.cells = {(i, j) for i in range(cols) for j in range(rows)}
+        self.edge = sorted(c for c in self.cells if self._on_edge(c))   # a random choice indexes this order
+        self._edge = set(self.edge)
+        self.col_count, self.row_count = [rows] * cols, [cols] * rows
+        self.box = [0, cols - 1, 0, rows - 1]   # the cells' bounds: first and last column, first and last row
+
+    def _on_edge(self, c: Cell) -> bool:
+        return any((c[0] + di, c[1] + dj) not in self.cells for di, dj in RING[::2])
+
+    def removable(self, c: Cell) -> bool:
+        """Whether the rest after taking the edge cell ``c`` away is still valid, at least three cells and not a
+        rectangle."""
+        if len(self.cells) <= 3:
+            return False
+        here = [(c[0] + di, c[1] + dj) in self.cells for di, dj in RING]
+        # the neighbours left form one run round it (so two of them never meet only at a corner either: an edge
+        # cell has a side open, and a corner between two sides that are not would be a second gap in the ring)
+        if sum(here[k] and not here[k - 1] for k in range(8)) != 1:
+            return False
+        i0, i1, j0, j1 = self.box
+        i, j = c
+        i0 += i == i0 and self.col_count[i] == 1
+        i1 -= i == i1 and self.col_count[i] == 1
+        j0 += j == j0 and self.row_count[j] == 1
+        j1 -= j == j1 and self.row_count[j] == 1
+        return len(self.cells) - 1 != (i1 - i0 + 1) * (j1 - j0 + 1)
+
+    def remove(self, c: Cell) -> None:
+        self.cells.discard(c)
+        self.edge.pop(bisect.bisect_left(self.edge, c))
+        self._edge.discard(c)
+        for di, dj in RING[::2]:
+            n = (c[0] + di, c[1] + dj)
+            if n in self.cells and n not in self._edge:
+                bisect.insort(self.edge, n)
+                self._edge.add(n)
+        i, j = c
+        self.col_count[i] -= 1
+        self.row_count[j] -= 1
+        box = self.box
+        while self.col_count[box[0]] == 0:
+            box[0] += 1
+        while self.col_count[box[1]] == 0:
+            box[1] -= 1
+        while self.row_count[box[2]] == 0:
+            box[2] += 1
+        while self.row_count[box[3]] == 0:
+            box[3] -= 1
+
+    def notched(self) -> bool:
+        """Whether the cells' convex hull is at least :data:`NOTCH` larger than they are (exact: in whole
+        half-cells, from the edge cells' corners)."""
+        corners = {(i + a, j + b) for i, j in self.edge for a in (0, 1) for b in (0, 1)}
+        return 100 * _hull_area2(sorted(corners)) >= 2 * (100 + NOTCH) * len(self.cells)
+
+
+def _hull_area2(points: List[Cell]) -> int:
+    """Twice the area of the convex hull of integer points sorted by x then y (Andrew's monotone chain)."""
+    def half(seq):
+        chain: List[Cell] = []
+        for p in seq:
+            while len(chain) >= 2 and ((chain[-1][0] - chain[-2][0]) * (p[1] - chain[-2][1]) -
+                                       (chain[-1][1] - chain[-2][1]) * (p[0] - chain[-2][0])) <= 0:
+                chain.pop()
+            chain.append(p)
+        return chain[:-1]
+    ring = half(points) + half(points[::-1])
+    return sum(ring[k - 1][0] * ring[k][1] - ring[k][0] * ring[k - 1][1] for k in range(len(ring)))
 
 
 def _carve(cols: int, rows: int, rng: Rng) -> Set[Cell]:
-    cells = {(i, j) for i in range(cols) for j in range(rows)}
+    carving = _Carving(cols, rows)
     goal = rng.between(1, max(1, int(cols * rows * 0.4)))
     for _ in range(4 * goal):
-        if len(cells) <= cols * rows - goal:
+        if len(carving.cells) <= cols * rows - goal:
             break
-        edge = sorted(c for c in cells
-                      if any(n not in cells for n in ((c[0] + 1, c[1]), (c[0] - 1, c[1]), (c[0], c[1] + 1),
-                                                       (c[0], c[1] - 1))))
-        cell = rng.choice(edge)
-        rest = cells - {cell}
-        if len(rest) >= 3 and _connected(rest) and not _pinched(rest, cols, rows) and not _rectangle(rest):
-            cells = rest
-    if _rectangle(cells):   # nothing taken away: a corner goes (a rectangle is convex)
-        cells = cells - {rng.choice([(0, 0), (cols - 1, 0), (0, rows - 1), (cols - 1, rows - 1)])}
-    return cells
-
-
-def _rectangle(cells: Set[Cell]) -> bool:
-    """Whether the cells fill their bounding rectangle (a whole row or column carved away leaves one)."""
-    cols = {i for i, _ in cells}
-    rows = {j for _, j in cells}
-    return len(cells) == (max(cols) - min(cols) + 1) * (max(rows) - min(rows) + 1)
+        cell = rng.choice(carving.edge)
+        if carving.removable(cell):
+            carving.remove(cell)
+    if carving.notched():
+        return carving.cells
+    # too little taken away (a rectangle is convex, one corner cell of a large grid hardly less so): the grid
+    # less a corner block a third of each side across, an L whose hull is at least 1/18 larger
+    a, b = -(-cols // 3), -(-rows // 3)
+    x = rng.choice([0, cols - a])
+    y = rng.choice([0, rows - b])
+    return {(i, j) for i in range(cols) for j in range(rows) if not (x <= i < x + a and y <= j < y + b)}
 
 
 def _outline(cells: Set[Cell]) -> List[Tuple[int, int]]:

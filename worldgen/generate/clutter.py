@@ -12,8 +12,9 @@ starts at a random place, facing something 1 to 3.3 m ahead.
 
 from __future__ import annotations
 
+import math
 from dataclasses import replace
-from typing import List, Sequence, Tuple
+from typing import Dict, List, Sequence, Tuple
 
 from ..spec.model import Material, Obstacle, RobotPose, Room, Spec, WallStyle
 from .options import ClutterOptions
@@ -134,16 +135,40 @@ def _inside(shape: Shape, room: Rect) -> bool:
     return all(room.x0 <= x <= room.x1 and room.y0 <= y <= room.y1 for x, y in points)
 
 
-def _fits(shape: Shape, placed: Sequence[Shape], gap: float) -> bool:
-    for other in placed:
-        apart = dist(shape.centre, other.centre)
-        if apart - shape.reach - other.reach >= gap + SLACK:
-            continue
-        if apart - shape.inner - other.inner < gap + SLACK:
-            return False   # their inner discs alone are too close
-        if not _apart(shape, other, gap + SLACK):
-            return False
-    return True
+class _Placed:
+    """The shapes placed so far, in square buckets by centre, so a new shape is tested against its neighbours
+    only: placing n shapes takes time linear in n, not quadratic, in a room of any size."""
+
+    BUCKET = 2.0   # m
+
+    def __init__(self):
+        self.shapes: List[Shape] = []
+        self._buckets: Dict[Tuple[int, int], List[Shape]] = {}
+        self._reach = 0.0   # the largest reach placed
+
+    def _key(self, p: Point) -> Tuple[int, int]:
+        return math.floor(p[0] / self.BUCKET), math.floor(p[1] / self.BUCKET)
+
+    def add(self, shape: Shape) -> None:
+        self.shapes.append(shape)
+        self._buckets.setdefault(self._key(shape.centre), []).append(shape)
+        self._reach = max(self._reach, shape.reach)
+
+    def fits(self, shape: Shape, gap: float) -> bool:
+        """Whether ``shape`` is at least ``gap`` from every shape placed (only those whose reach could come that
+        near are looked at)."""
+        (i, j), k = self._key(shape.centre), math.ceil((shape.reach + self._reach + gap + SLACK) / self.BUCKET)
+        for di in range(-k, k + 1):
+            for dj in range(-k, k + 1):
+                for other in self._buckets.get((i + di, j + dj), ()):
+                    apart = dist(shape.centre, other.centre)
+                    if apart - shape.reach - other.reach >= gap + SLACK:
+                        continue
+                    if apart - shape.inner - other.inner < gap + SLACK:
+                        return False   # their inner discs alone are too close
+                    if not _apart(shape, other, gap + SLACK):
+                        return False
+        return True
 
 
 def _clear_of(shape: Shape, spawn: Point, clearance: float) -> bool:
@@ -163,22 +188,22 @@ def make(name: str, options: ClutterOptions, space: RobotSpace, rng: Rng) -> Tup
              round(rng.uniform(floor.y0 + margin, floor.y1 - margin), 2))
     allowed = floor.shrunk(options.gap + SLACK)
     target = options.density * floor.area
-    placed: List[Shape] = []
+    placed = _Placed()
     covered, misses = 0.0, 0
     while covered < target and misses < MISSES and allowed.width > 0 and allowed.height > 0:
         shape = _drop(allowed, options.shapes, rng)
         if _inside(shape, allowed) and _clear_of(shape, spawn, space.clearance) and \
-                _fits(shape, placed, options.gap):
-            placed.append(shape)
+                placed.fits(shape, options.gap):
+            placed.add(shape)
             covered += shape.area
             misses = 0
         else:
             misses += 1
-    segments = [e for s in placed for o in s.outlines for e in edges_of(o)]
-    segments += _disc_edges(placed) + edges_of(floor.corners())
+    segments = [e for s in placed.shapes for o in s.outlines for e in edges_of(o)]
+    segments += _disc_edges(placed.shapes) + edges_of(floor.corners())
     yaw, _ = facing(spawn, HEADINGS, space.width / 2 + 0.05, segments, *AHEAD, rng)
     style = WallStyle(THICKNESS, options.wall_height, Material())
-    obstacles = tuple(ob for i, s in enumerate(placed) for ob in s.obstacles(i))
+    obstacles = tuple(ob for i, s in enumerate(placed.shapes) for ob in s.obstacles(i))
     spec = Spec(name=name, style=style, rooms=(Room("room", tuple(room.corners()), style),), obstacles=obstacles,
                 robot=RobotPose(options.robot, spawn, round(yaw, 4)))
     share = covered / floor.area
