@@ -18,6 +18,7 @@ from pathlib import Path
 from ..core.findings import Finding
 from ..core.scene import Scene
 from ..robots.body import RobotBody, robot_body  # noqa: F401  (the checks' robot; validate imports it from here)
+from .sim_job import STOP_TARGET
 from .sim_results import Scanned, Settled, SimNumbers, Stopped
 from ..geometry.enclosure import enclosure, passage_width
 from ..geometry.slices import footprints_between, ground_under
@@ -27,7 +28,6 @@ GEOMETRIC_CHECKS = ("parse", "enclosed", "spawn-clear")
 SIM_CHECKS = ("settle", "lidar", "spin", "stop-at-wall")
 CLIMB = 0.010            # TurtleBot3's threshold of climbing: anything lower is not in the robot's way
 SPIN_DRIFT_LIMIT = 0.05  # m: spinning in place must keep the robot within this of where it started
-STOP_TARGET = 0.5        # m: stop-at-wall drives to this distance from the wall ahead
 STOP_TOLERANCE = 0.05    # m: and must end within this of it
 TILT_LIMIT = 10.0        # degrees: an upright robot after settling
 GROUND_LIMIT = 0.02      # m: base_footprint within this of the floor after settling

@@ -20,10 +20,10 @@ from pathlib import Path
 from ..core.scene import Scene
 from ..core.stoplaw import StopLaw
 from ..robots.profile import robot_profile
-from .checks import STOP_TARGET
 from .sim_results import Scanned, Settled, SimNumbers, Spun, Stopped, touches
 
 SETTLE_SECONDS = 1.0
+STOP_TARGET = 0.5           # m: stop-at-wall drives to this distance from the wall ahead
 SPIN_OMEGA = 1.5            # rad/s: within both the burger's (2.84) and the waffle's (1.82) limits
 STOP_KP = 1.0
 STOP_SPEED = 0.22           # m/s: the burger's top speed
@@ -71,7 +71,7 @@ def sim_numbers(scene: Scene, robot: str = "burger", spawn=(0.0, 0.0, 0.0), no_h
     """Run the simulated checks on ``scene`` and return what they measured.
 
     Spawns ``robot`` at ``spawn`` (x, y, yaw), lets it settle, takes a 360-beam scan, spins in place, then drives
-    to :data:`~worldgen.check.checks.STOP_TARGET` from the nearest wall ahead (turning to face the nearest wall first
+    to :data:`STOP_TARGET` from the nearest wall ahead (turning to face the nearest wall first
     when nothing is within range ahead). Each stage is written to ``stage_file`` before it starts, so that a
     crash can be reported as "while <stage>".
     """

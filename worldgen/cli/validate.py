@@ -59,7 +59,8 @@ def validate(paths, robot, spawn, launch_file, model_paths, fmt, junit, jobs, li
     from ..sim.forkserver import forking, one_blas_thread
 
     # the simulations' fork server, forked while this process runs one thread (numpy's BLAS held to it) and has
-    # imported what both use; the server imports pybullet and the simulator while this process reads the inputs
+    # imported what a run needs of worldgen; the server imports pybullet and the simulator while this process
+    # imports the checks and reads the inputs
     one_blas_thread()
     for name in SHARED_MODULES:
         importlib.import_module(name)
@@ -67,8 +68,9 @@ def validate(paths, robot, spawn, launch_file, model_paths, fmt, junit, jobs, li
         _validate(*args)
 
 
-# imported here before the fork: the checks, the reader (a small world's job reads it itself: check.sim_run), the job
-SHARED_MODULES = ("worldgen.check.validate", "worldgen.check.sim_job", "worldgen.check.sources", "worldgen.sdf.reader")
+# imported here before the fork: the job and the reader (a small world's job reads it itself: check.sim_run); not
+# the checks and the launch reader, which only this process needs
+SHARED_MODULES = ("worldgen.check.sim_job", "worldgen.check.sources", "worldgen.sdf.reader")
 # imported in the server only: pybullet and the session (a client connected ahead: sim.session.warm)
 SIM_MODULES = ("worldgen.sim.session:warm", "worldgen.sim.behaviours", "worldgen.sim.lidar")
 
