@@ -25,7 +25,6 @@ from ..core import packages as rospkg
 from .model import LaunchInfo
 from .walk_xml import LaunchRead, load_launch
 from .substitution_xml import Lookup
-from .reader_py import read_launch_py
 
 
 def package_index(launch_path: str | Path, ros_package_path: Sequence[str | Path] | None = None
@@ -55,6 +54,8 @@ def read_launch(path: str | Path, args: Mapping[str, str] | None = None, *,
     path = Path(path)
     environ = os.environ if environ is None else environ
     if is_python_launch(path):
+        from .reader_py import read_launch_py   # (the Python reader's modules: only for a launch.py)
+
         return read_launch_py(path, args, finder=package_index(path, ros_package_path), environ=environ)
     read = LaunchRead(Lookup(package_index(path, ros_package_path), environ), LaunchInfo(path=path))
     load_launch(read, path, {k: str(v) for k, v in (args or {}).items()}, "/", None)
