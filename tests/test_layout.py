@@ -313,6 +313,8 @@ LAZY_WORLDGEN = {
         "a launch file's world only: the readers and pyread, 16 modules `worldgen --help` and every run would load",
     ("worldgen.ros1.nodes", "worldgen.launch.reader"):
         "launch files among the nodes only: the same 16 modules",
+    ("worldgen.launch.reader", "worldgen.launch.reader_py"):
+        "a ROS 2 launch.py only: the Python reader and pyread, 25 ms that validate of a roslaunch XML file would pay",
     ("worldgen.view.vendor", "worldgen.core.errors"):
         "the build hook loads vendor.py by its path, alone, where no relative import at module level can work",
 }
