@@ -247,23 +247,20 @@ class Space:
         ``r`` the point is reached at, from an outside point at distance ``d``, is not computed when ``s`` ≤ 98 %
         of ``r`` and ``d`` ≤ 99.5 % of ``r`` less 1.02 % of ``s``: a disc of radius ``s`` then fits wherever one
         of ``r`` did (GEOS's grown parts lie between 99.5 % and 101 % of the true ones), and one on the way from
-        that outside point towards ``point`` covers it. A wrong guess: the smaller ones are computed down to one
-        that is right; the smallest wrong one above it is where the bisection turns the other way next time
-        (the guesses only grow along the way, the lower end of the bisection)."""
+        that outside point towards ``point`` covers it. A wrong guess ends the check at once: its space is kept,
+        so the bisection turns the other way there next time, and the smaller guesses are settled then, from a
+        larger lower end than this one's (the guesses only grow along the way, the lower end of the bisection);
+        computing them now, one full space each, could only repeat what that proves."""
         ref = None if lo in guessed else (lo, self._reach(point, lo))   # lo computed and not cutting off already
-        wrong = False
         for s in sorted(set(guessed), reverse=True):
             if ref is not None and s <= PROOF_SHRINK * ref[0] - PROOF_MARGIN and \
                     ref[1] <= 0.995 * ref[0] - 0.0102 * s - 2 * PROOF_MARGIN:
                 continue
             d = self._reach(point, s)
             if d > s + 1e-9:
-                wrong = True
-                continue
-            if wrong:
                 return False
             ref = (s, d)
-        return not wrong
+        return True
 
     def plugged(self, plug) -> Space:
         """This space with ``plug`` added to the obstacles. The same plug again (the way out the search followed,
