@@ -103,6 +103,7 @@ class Family:
         self.local = len(self.parts) > MANY_SHAPES   # so many that a window round a point is worth a try
         self.tree = shapely.STRtree(self.parts) if self.local else None
         self.areas = shapely.area(shapely.envelope(self.parts)) if self.local else None
+        self.root: Space | None = None   # the space of these obstacles without plugs (see Space._outside)
 
 
 LOCAL_REACH = 0.25     # m: the first window round a point reaches this far beyond the radius (then 4, 16, … times)
@@ -123,13 +124,26 @@ class Space:
     """
 
     def __init__(self, obstacles, frame, plugs: tuple = (), base: Space | None = None, limit: float = MAX_GAP):
-        self.obstacles, self.frame, self.plugs, self.limit = obstacles, frame, plugs, limit
+        """``obstacles``: their union, or (a plugged space) a function that unites them when first needed."""
+        self._obstacles, self.frame, self.plugs, self.limit = obstacles, frame, plugs, limit
         self.family = Family(obstacles) if base is None else base.family   # the obstacles before any plug
+        if base is None and not plugs:
+            self.family.root = self
         self.base = self.family.base
+        self._cut_outside: tuple | None = None   # (the outside at radius 0,) as cut by _outside
         self._cache: dict[float, tuple] = {}
         self._radii: dict[float, float] = {}   # the radius first asked for under each key: the one used
         self._shown: dict[tuple, bool] = {}    # (point, key) -> whether closed_near showed it cut off
         self._plugged: dict[int, tuple] = {}   # id(plug) -> (plug, the space it was first added to this one in)
+
+    @property
+    def obstacles(self):
+        """The obstacles, plugs included, united: for a plugged space when first asked for (the last one of a
+        search is only asked whether the point is still reached at radius 0, which :meth:`_outside` answers
+        without them)."""
+        if callable(self._obstacles):
+            self._obstacles = self._obstacles()
+        return self._obstacles
 
     def radius(self, r: float) -> tuple[float, float]:
         """(the cache key of ``r``, the radius that stands for every radius of that key: the first asked for)."""
@@ -182,8 +196,23 @@ class Space:
         """How far ``point`` is from the outside at radius ``r`` (inf when nothing is outside)."""
         import shapely
 
-        outside = self.at(r)[1]
+        outside = self._outside(r)
         return math.inf if outside is None else outside.distance(shapely.Point(point))
+
+    def _outside(self, r: float):
+        """The outside at radius ``r``, for the distance to it alone (:meth:`_reach`). A plugged space of very
+        many obstacles at radius 0 not computed yet: the unplugged free space less the plugs (the same region;
+        parts the plugs miss kept as they are), without uniting thousands of obstacles and cutting them out of the
+        frame again for each plug. The spaces the neck is found in are computed whole (:meth:`at`), vertex for
+        vertex as before: among equally near points (posts on a regular grid) the first in their order is taken."""
+        key, r = self.radius(r)
+        family = self.family
+        if key != 0 or key in self._cache or not self.plugs or not family.many or family.root is None or \
+                r != 0 or family.radii.setdefault(key, r) != 0:
+            return self.at(r)[1]
+        if self._cut_outside is None:
+            self._cut_outside = (_cut_outside(family.root.at(0.0)[0], self.plugs, self.frame),)
+        return self._cut_outside[0]
 
     def closed_near(self, point: tuple[float, float], r: float) -> bool:
         """True when the obstacles near ``point`` (more than :data:`MANY_SHAPES` parts) already cut it off at radius
@@ -265,20 +294,41 @@ class Space:
     def plugged(self, plug) -> Space:
         """This space with ``plug`` added to the obstacles. The same plug again (the way out the search followed,
         closed for the next round): a new space, but the obstacles united and the free space among them (radius
-        0, the first a search asks for) as computed the first time."""
-        import shapely
-
+        0, the first a search asks for) as computed the first time. The obstacles are united when first needed."""
         kept = self._plugged.get(id(plug))
         if kept is not None and kept[0] is plug:
-            space = Space(kept[1].obstacles, self.frame, kept[1].plugs, self, self.limit)
-            if kept[1]._radii.get(0.0) == 0.0 and 0.0 in kept[1]._cache:
-                space._radii[0.0], space._cache[0.0] = 0.0, kept[1]._cache[0.0]
+            first = kept[1]
+            space = Space(lambda: first.obstacles, self.frame, first.plugs, self, self.limit)
+            if first._radii.get(0.0) == 0.0 and 0.0 in first._cache:
+                space._radii[0.0], space._cache[0.0] = 0.0, first._cache[0.0]
+            space._cut_outside = first._cut_outside
             return space
-        parts = shapely.get_parts(self.obstacles)
-        united = shapely.union_all([self.obstacles, plug]) if len(parts) <= SMALL else unite([*parts, plug])
-        space = Space(united, self.frame, (*self.plugs, plug), self, self.limit)
+        space = Space(lambda: _with_plug(self.obstacles, plug), self.frame, (*self.plugs, plug), self, self.limit)
         self._plugged[id(plug)] = (plug, space)   # holding the plug keeps its id its own
         return space
+
+
+def _with_plug(obstacles, plug):
+    """``obstacles`` (a union) and ``plug`` united."""
+    import shapely
+
+    parts = shapely.get_parts(obstacles)
+    return shapely.union_all([obstacles, plug]) if len(parts) <= SMALL else unite([*parts, plug])
+
+
+def _cut_outside(parts: list, plugs: tuple, frame):
+    """The part touching ``frame`` of the free space ``parts`` less ``plugs`` (None when none does): only the
+    parts the plugs meet are cut."""
+    import shapely
+
+    cutter = shapely.union_all(list(plugs))
+    shapely.prepare(cutter)
+    hit = shapely.intersects(cutter, list(parts)) if len(parts) else []
+    for part, cut in zip(parts, hit):
+        for piece in components(part.difference(cutter)) if cut else [part]:
+            if reaches_outside(piece, frame):
+                return piece
+    return None
 
 
 def _closed_by(parts: list, point: tuple[float, float], r: float) -> bool:
