@@ -18,6 +18,7 @@ import math
 import threading
 from collections import OrderedDict
 
+from .ahead import in_thread, outcome
 from .slices import SLIVER, Footprint
 from .growth import SMALL, cluster_labels, grown, unite
 
@@ -135,6 +136,7 @@ class Space:
         self._radii: dict[float, float] = {}   # the radius first asked for under each key: the one used
         self._shown: dict[tuple, bool] = {}    # (point, key) -> whether closed_near showed it cut off
         self._plugged: dict[int, tuple] = {}   # id(plug) -> (plug, the space it was first added to this one in)
+        self._ahead: dict[float, tuple] = {}   # key -> (radius, future of _computed): started by _compute_ahead
 
     @property
     def obstacles(self):
@@ -168,7 +170,10 @@ class Space:
     def at(self, r: float):
         key, r = self.radius(r)
         if key not in self._cache:
-            if key == 0 and not self.plugs:   # the free space itself: the same for every room of a world
+            ahead = _taken_ahead(self, key, r)
+            if ahead is not None:
+                self._cache[key] = ahead
+            elif key == 0 and not self.plugs:   # the free space itself: the same for every room of a world
                 self._cache[key] = _free_space(self.obstacles, self.frame)
             else:
                 self._cache[key] = _parts_and_outside(self.frame.difference(self.grown(r)), self.frame)
@@ -248,29 +253,34 @@ class Space:
 
         Bisected with the radii that do not cut the point off guessed (all but the last need no space of their
         own), then confirmed; a guess found wrong is known then, and the bisection runs again: the radii are the
-        ones each decided in turn from its own space would give."""
+        ones each decided in turn from its own space would give. The first confirmation computes the space the
+        next bisection would need meanwhile (:meth:`_compute_ahead`): the first guesses are the likeliest wrong."""
+        ahead = True
         while True:
             guessed: list = []
-            bounds = self._bisect(point, guessed)
-            if bounds is None or not guessed or self._confirmed(point, guessed, bounds[0]):
+            bounds = self._bisect(lambda r, guess: self.cut_off(point, r, guessed if guess else None))
+            if bounds is None or not guessed or self._confirmed(point, guessed, bounds[0], ahead):
                 return bounds
+            ahead = False
 
-    def _bisect(self, point, guessed: list) -> tuple[float, float] | None:
-        if self.cut_off(point, 0.0):
+    def _bisect(self, cut) -> tuple[float, float] | None:
+        """The bisection, with ``cut(r, guess)`` saying whether radius ``r`` cuts the point off (``guess``: a
+        radius not shown cut off may be guessed open)."""
+        if cut(0.0, False):
             return 0.0, 0.0
-        if not self.cut_off(point, self.limit / 2):   # a disc that passes there passes every smaller opening too
+        if not cut(self.limit / 2, False):   # a disc that passes there passes every smaller opening too
             return None
         lo, hi = 0.0, 0.05
-        while not self.cut_off(point, hi, guessed):
+        while not cut(hi, True):
             if hi >= self.limit / 2:
                 return None
             lo, hi = hi, min(hi * 2, self.limit / 2)
         while hi - lo > WIDTH_TOLERANCE / 2:
             mid = (lo + hi) / 2
-            lo, hi = (lo, mid) if self.cut_off(point, mid, guessed) else (mid, hi)
+            lo, hi = (lo, mid) if cut(mid, True) else (mid, hi)
         return lo, hi
 
-    def _confirmed(self, point, guessed: list, lo: float) -> bool:
+    def _confirmed(self, point, guessed: list, lo: float, ahead: bool = False) -> bool:
         """Whether every radius in ``guessed`` indeed does not cut ``point`` off. The largest is computed (the
         bisection's lower end ``lo``: its space is needed anyway). A smaller radius ``s`` below a computed one
         ``r`` the point is reached at, from an outside point at distance ``d``, is not computed when ``s`` ≤ 98 %
@@ -279,17 +289,34 @@ class Space:
         that outside point towards ``point`` covers it. A wrong guess ends the check at once: its space is kept,
         so the bisection turns the other way there next time, and the smaller guesses are settled then, from a
         larger lower end than this one's (the guesses only grow along the way, the lower end of the bisection);
-        computing them now, one full space each, could only repeat what that proves."""
+        computing them now, one full space each, could only repeat what that proves. With ``ahead``, the first
+        space computed here has the next bisection's computed beside it (:meth:`_compute_ahead`)."""
         ref = None if lo in guessed else (lo, self._reach(point, lo))   # lo computed and not cutting off already
         for s in sorted(set(guessed), reverse=True):
             if ref is not None and s <= PROOF_SHRINK * ref[0] - PROOF_MARGIN and \
                     ref[1] <= 0.995 * ref[0] - 0.0102 * s - 2 * PROOF_MARGIN:
                 continue
+            if ahead:
+                self._compute_ahead(point, s)
+                ahead = False
             d = self._reach(point, s)
             if d > s + 1e-9:
                 return False
             ref = (s, d)
         return True
+
+    def _compute_ahead(self, point, guess: float) -> None:
+        """Very many obstacles: start computing, in a thread of its own, the space the next bisection would
+        compute first were ``guess`` (about to be computed) found to cut ``point`` off after all (its lower end,
+        a guess between the last one below and this one), so that both are computed at once. Foreseen without
+        computing any space (:func:`_foreseen`); taken by :meth:`at` only when asked for at the very radius
+        foreseen (:func:`_taken_ahead`)."""
+        if not self.family.local or round(guess, 6) in self._cache:
+            return
+        r = _foreseen(self, point, guess)
+        key = round(r, 6) if r is not None else None
+        if r is not None and key not in self._cache and key not in self._ahead and self._radii.get(key, r) == r:
+            self._ahead[key] = (r, in_thread(lambda: _computed(self, key, r)))
 
     def plugged(self, plug) -> Space:
         """This space with ``plug`` added to the obstacles. The same plug again (the way out the search followed,
@@ -306,6 +333,75 @@ class Space:
         space = Space(lambda: _with_plug(self.obstacles, plug), self.frame, (*self.plugs, plug), self, self.limit)
         self._plugged[id(plug)] = (plug, space)   # holding the plug keeps its id its own
         return space
+
+
+def _foreseen(space: Space, point, guess: float) -> float | None:
+    """The lower end of the next bisection were ``guess`` found to cut ``point`` off, when that is a guess (the
+    radius its confirmation computes first): the bisection again, on the radii computed and what the obstacles
+    near the point show (:meth:`Space.closed_near`, kept as the bisection keeps it). None when it would need a
+    space not computed yet to get there."""
+    guessed: list = []
+
+    def cut(r: float, guess_open: bool) -> bool:
+        key = round(r, 6)
+        if r == guess:
+            return True
+        if key in space._cache or (key == 0 and r == 0 and space._cut_outside is not None):
+            return space.cut_off(point, r)
+        if r > 0 and (point, key) not in space._shown:
+            space._shown[(point, key)] = space.closed_near(point, r)
+        if r > 0 and space._shown[(point, key)]:
+            return True
+        if r > 0 and guess_open:
+            guessed.append(r)
+            return False
+        raise _Unforeseen
+
+    try:
+        bounds = space._bisect(cut)
+    except _Unforeseen:
+        return None
+    return bounds[0] if bounds is not None and bounds[0] in guessed else None
+
+
+def _computed(space: Space, key: float, r: float) -> tuple:
+    """(the radius the obstacles are grown by, their growth kept when this began, else None and the growth
+    computed here, and the space at ``r``) as :meth:`Space.at` computes it for very many obstacles, writing
+    nothing shared (run in a thread of its own)."""
+    import shapely
+
+    by = space.family.radii.get(key, r)
+    known = space.family.grown.get(key)
+    grown_here = grown(space.base, by, quad_segs=8) if known is None else None
+    obstacles = known if grown_here is None else grown_here
+    if space.plugs:
+        plugs = shapely.buffer(list(space.plugs), r, quad_segs=8) if r > 0 else list(space.plugs)
+        obstacles = unite([*shapely.get_parts(obstacles), *plugs])
+    return by, known, grown_here, _parts_and_outside(space.frame.difference(obstacles), space.frame)
+
+
+def _taken_ahead(space: Space, key: float, r: float) -> tuple | None:
+    """The space at ``r`` computed ahead (:meth:`Space._compute_ahead`), when it is the one :meth:`Space.at`
+    would compute now: the same radius, the obstacles grown by the same radius (the same growth, or none kept yet:
+    then it is kept). None otherwise, or when it failed (then computed there, failing as it would)."""
+    ahead = space._ahead.pop(key, None)
+    if ahead is None or ahead[0] != r:
+        return None
+    done = outcome(ahead[1])
+    if done is None:
+        return None
+    by, known, grown_here, computed = done
+    family = space.family
+    if known is not None:
+        return computed if family.grown.get(key) is known else None
+    if key in family.grown or family.radii.setdefault(key, r) != by:
+        return None
+    family.grown[key] = grown_here
+    return computed
+
+
+class _Unforeseen(Exception):
+    """The next bisection needs a space not computed yet to go on: nothing is started ahead."""
 
 
 def _with_plug(obstacles, plug):
