@@ -79,9 +79,14 @@ def _parts_and_outside(free, frame) -> tuple:
 
 
 def components(geometry) -> list:
+    """The polygons of ``geometry`` with an area, in its order (tested all at once: a free space among 10 000
+    posts has as many)."""
+    import numpy as np
     import shapely
 
-    return [p for p in shapely.get_parts(geometry) if p.geom_type == "Polygon" and p.area > 0]
+    parts = shapely.get_parts(geometry)
+    with np.errstate(over="ignore", invalid="ignore"):   # a spawn 1000 km out: inf, quietly as one by one
+        return list(parts[(shapely.get_type_id(parts) == 3) & (shapely.area(parts) > 0)])
 
 
 def reaches_outside(component, frame) -> bool:
