@@ -136,7 +136,7 @@ class Space:
         if base is None and not plugs:
             self.family.root = self
         self.base = self.family.base
-        self._cut_outside: tuple | None = None   # (the outside at radius 0,) as cut by _outside
+        self._cut_outside: dict = {}   # point -> the outside at radius 0 as cut for it by _outside
         self._cache: dict[float, tuple] = {}
         self._radii: dict[float, float] = {}   # the radius first asked for under each key: the one used
         self._shown: dict[tuple, bool] = {}    # (point, key) -> whether closed_near showed it cut off
@@ -206,23 +206,23 @@ class Space:
         """How far ``point`` is from the outside at radius ``r`` (inf when nothing is outside)."""
         import shapely
 
-        outside = self._outside(r)
+        outside = self._outside(r, point)
         return math.inf if outside is None else outside.distance(shapely.Point(point))
 
-    def _outside(self, r: float):
-        """The outside at radius ``r``, for the distance to it alone (:meth:`_reach`). A plugged space of very
-        many obstacles at radius 0 not computed yet: the unplugged free space less the plugs (the same region;
-        parts the plugs miss kept as they are), without uniting thousands of obstacles and cutting them out of the
-        frame again for each plug. The spaces the neck is found in are computed whole (:meth:`at`), vertex for
-        vertex as before: among equally near points (posts on a regular grid) the first in their order is taken."""
+    def _outside(self, r: float, point: tuple[float, float]):
+        """The outside at radius ``r``, for the distance from ``point`` to it alone (:meth:`_reach`). A plugged
+        space of very many obstacles at radius 0 not computed yet: the unplugged free space less the plugs, cut for
+        this point (:func:`_cut_outside`), without uniting thousands of obstacles and cutting them out of the frame
+        again for each plug. The spaces the neck is found in are computed whole (:meth:`at`), vertex for vertex as
+        before: among equally near points (posts on a regular grid) the first in their order is taken."""
         key, r = self.radius(r)
         family = self.family
         if key != 0 or key in self._cache or not self.plugs or not family.many or family.root is None or \
                 r != 0 or family.radii.setdefault(key, r) != 0:
             return self.at(r)[1]
-        if self._cut_outside is None:
-            self._cut_outside = (_cut_outside(family.root.at(0.0)[0], self.plugs, self.frame),)
-        return self._cut_outside[0]
+        if point not in self._cut_outside:
+            self._cut_outside[point] = _cut_outside(family.root.at(0.0)[0], self.plugs, self.frame, point)
+        return self._cut_outside[point]
 
     def closed_near(self, point: tuple[float, float], r: float) -> bool:
         """True when the obstacles near ``point`` (more than :data:`MANY_SHAPES` parts) already cut it off at radius
@@ -333,7 +333,7 @@ class Space:
             space = Space(lambda: first.obstacles, self.frame, first.plugs, self, self.limit)
             if first._radii.get(0.0) == 0.0 and 0.0 in first._cache:
                 space._radii[0.0], space._cache[0.0] = 0.0, first._cache[0.0]
-            space._cut_outside = first._cut_outside
+            space._cut_outside = dict(first._cut_outside)
             return space
         space = Space(lambda: _with_plug(self.obstacles, plug), self.frame, (*self.plugs, plug), self, self.limit)
         self._plugged[id(plug)] = (plug, space)   # holding the plug keeps its id its own
@@ -351,7 +351,7 @@ def _foreseen(space: Space, point, guess: float) -> float | None:
         key = round(r, 6)
         if r == guess:
             return True
-        if key in space._cache or (key == 0 and r == 0 and space._cut_outside is not None):
+        if key in space._cache or (key == 0 and r == 0 and point in space._cut_outside):
             return space.cut_off(point, r)
         if r > 0 and (point, key) not in space._shown:
             space._shown[(point, key)] = space.closed_near(point, r)
@@ -417,19 +417,41 @@ def _with_plug(obstacles, plug):
     return shapely.union_all([obstacles, plug]) if len(parts) <= SMALL else unite([*parts, plug])
 
 
-def _cut_outside(parts: list, plugs: tuple, frame):
-    """The part touching ``frame`` of the free space ``parts`` less ``plugs`` (None when none does): only the
-    parts the plugs meet are cut."""
+def _cut_outside(parts: list, plugs: tuple, frame, point):
+    """The part touching ``frame`` of the free space ``parts`` less ``plugs`` (None when none does), as far as
+    the distance from ``point`` to it goes: only the parts the plugs meet are cut, each with only the holes that
+    can matter (:func:`_holes_kept`)."""
     import shapely
 
     cutter = shapely.union_all(list(plugs))
     shapely.prepare(cutter)
     hit = shapely.intersects(cutter, list(parts)) if len(parts) else []
     for part, cut in zip(parts, hit):
-        for piece in components(part.difference(cutter)) if cut else [part]:
+        for piece in components(_holes_kept(part, cutter, point).difference(cutter)) if cut else [part]:
             if reaches_outside(piece, frame):
                 return piece
     return None
+
+
+def _holes_kept(part, cutter, point):
+    """``part`` with its holes filled but those the cutter meets, those within 1 µm of ``point`` and those
+    touching another of its rings: cut by ``cutter``, it falls into the same pieces (a filled hole joins the one
+    piece round it: the cutter keeps clear of it, and its ring meets no other), the point in the same one, and
+    the distance from the point to each piece it is not in stays (a filled hole lies within the piece round it).
+    The free space among 10 000 posts has a hole for each: cutting a few instead of all is 0.2 s less."""
+    import shapely
+
+    rings = shapely.get_rings(part)
+    holes = shapely.polygons(rings[1:])
+    if len(holes) == 0:
+        return part
+    keep = shapely.intersects(cutter, holes) | (shapely.distance(holes, shapely.Point(point)) <= 1e-6)
+    keep |= shapely.intersects(rings[0], rings[1:])
+    a, b = shapely.STRtree(rings[1:]).query(rings[1:], predicate="intersects")
+    keep[a[a != b]] = True
+    if keep.all():
+        return part
+    return shapely.Polygon(rings[0], list(rings[1:][keep]))
 
 
 def _closed_by(parts: list, point: tuple[float, float], r: float) -> bool:
