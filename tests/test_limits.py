@@ -385,3 +385,30 @@ def test_a_grid_of_lone_cells_is_refused(tmp_path):
     one_line_refusal(CliRunner().invoke(main, ["build", str(path), "-o", str(tmp_path / "out")]),
                      "57,800 posts (lone # cells) at least, more than the 50,000")
     assert time.perf_counter() - start < 5 and not (tmp_path / "out").exists()
+
+
+def test_a_closed_way_out_reaches_a_point_as_the_whole_space_does():
+    """Past 200 shapes, whether a point is still reached at radius 0 once a way out is closed comes from the free
+    space without the plug, cut by it with only the holes that can matter kept: the same answer as the space
+    computed whole, for a point in the closed room, outside it, in a closed box beside it, in the plug itself, and
+    beside posts touching at a corner."""
+    import shapely
+
+    walls = [shapely.box(-3, -3, 3, -2.9), shapely.box(-3, 2.9, 3, 3), shapely.box(-3, -3, -2.9, 3),
+             shapely.box(2.9, -3, 3, -0.5), shapely.box(2.9, 0.5, 3, 3)]
+    posts = [shapely.box(x, y, x + 0.1, y + 0.1) for x in np.arange(-2.5, 2.5, 0.3) for y in np.arange(-2.5, 2.5, 0.3)]
+    box_room = [shapely.box(5, 5, 7, 5.1), shapely.box(5, 6.9, 7, 7), shapely.box(5, 5, 5.1, 7),
+                shapely.box(6.9, 5, 7, 7)]
+    corners = [shapely.box(3.5, -0.3, 3.6, -0.2), shapely.box(3.6, -0.2, 3.7, -0.1), shapely.box(3.5, -0.1, 3.6, 0)]
+    prints = [slices.Footprint(f"s{i}", g) for i, g in enumerate(walls + posts + box_room + corners)]
+    assert len(prints) > disc_space.SMALL
+    obstacles = disc_space.obstacle_union(prints)
+    frame = shapely.box(-10, -10, 10, 10)
+    space = disc_space.Space(obstacles, frame)
+    plug = shapely.LineString([(2.95, -0.5), (2.95, 0.5)]).buffer(0.001, quad_segs=1)
+    plugged = space.plugged(plug)
+    parts, outside = disc_space._parts_and_outside(frame.difference(plugged.obstacles), frame)
+    for point in [(-2.3, -2.3), (0.05, 0.05), (8.0, 8.0), (6.0, 6.0), (2.95, 0.0), (3.6, -0.15), (3.05, 0.0)]:
+        exact = outside.distance(shapely.Point(point)) > 1e-9
+        assert plugged.cut_off(point, 0.0) is exact, point
+    assert [plugged.cut_off(p, 0.0) for p in [(-2.3, -2.3), (8.0, 8.0), (6.0, 6.0)]] == [True, False, True]

@@ -27,7 +27,7 @@ def emit_models(ctx: ReadContext, models: List[Model], scene: Scene) -> None:
         scene.models.append(model.name)
         world = model.world if model.world is not None else model.pose
         scene.model_poses[model.name] = (float(world[0, 3]), float(world[1, 3]), float(world[2, 3]),
-                                         *poses.matrix_quat(world[:3, :3]))
+                                         *_quaternion(world[:3, :3]))
         before = len(scene.shapes)
         far: list = []
         emit_model(ctx, model, poses.IDENTITY, model.name, scene, far)
@@ -79,8 +79,24 @@ def _place(link_world: np.ndarray, pose: np.ndarray, placed: dict) -> tuple:
     """The world position and orientation of a pose in the link's frame (``placed`` caches them by pose object)."""
     if id(pose) not in placed:
         t = link_world @ pose
-        placed[id(pose)] = ((float(t[0, 3]), float(t[1, 3]), float(t[2, 3])), poses.matrix_quat(t[:3, :3]))
+        placed[id(pose)] = ((float(t[0, 3]), float(t[1, 3]), float(t[2, 3])), _quaternion(t[:3, :3]))
     return placed[id(pose)]
+
+
+QUATERNIONS_KEPT = 1024
+_QUATERNIONS: dict = {}   # a rotation's bytes -> its quaternion
+
+
+def _quaternion(rotation: np.ndarray) -> tuple:
+    """:func:`~worldgen.core.poses.matrix_quat` of ``rotation``, remembered by its bytes (the last
+    :data:`QUATERNIONS_KEPT`): the models of a big world share a few rotations (10 000 posts: one, twice each)."""
+    key = rotation.tobytes()
+    quaternion = _QUATERNIONS.get(key)
+    if quaternion is None:
+        if len(_QUATERNIONS) >= QUATERNIONS_KEPT:
+            _QUATERNIONS.clear()
+        quaternion = _QUATERNIONS[key] = poses.matrix_quat(rotation)
+    return quaternion
 
 
 def _bare_link(ctx: ReadContext, link: Link, label: str, visuals: List[Shape]) -> None:

@@ -86,6 +86,7 @@ def read_link(ctx: ReadContext, link: Link, el, f: SdfFile, model: Model, frames
     collisions = children(el, "collision")
     check_unique(ctx, [c.get("name") or "" for c in collisions],
                  f"collisions in {model.name}/{link.name}", f.where(el))
+    visuals = children(el, "visual")
     read: dict = {}   # (pose, geometry) as written → (pose, shape) read: a visual drawn like a collision reuses it
     for c in collisions:
         name = c.get("name") or "collision"
@@ -99,10 +100,9 @@ def read_link(ctx: ReadContext, link: Link, el, f: SdfFile, model: Model, frames
         shape = read_geometry(ctx, geometry, f, label)
         if shape is not None:
             link.collisions.append(Collision(name, pose, shape))
-            written = _as_written(c, geometry)
+            written = _as_written(c, geometry) if visuals else None   # only a visual looks it up
             if written is not None:
                 read.setdefault(written, (pose, shape))
-    visuals = children(el, "visual")
     for v in visuals:
         label = f"{model.name}/{link.name}/{v.get('name') or 'visual'}"
         written = _as_written(v, v.find("geometry")) if read else None
