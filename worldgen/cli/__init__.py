@@ -109,7 +109,6 @@ def main() -> None:
     """Gazebo worlds for TurtleBot3 classes: build them from text, launch them, check them headless."""
 
 
-
 def run() -> None:
     """The program (``worldgen``, ``python -m worldgen``): :func:`main`, then out without the interpreter's
     teardown. Once the command has returned, its files are closed and its processes ended; what is left is
