@@ -232,9 +232,11 @@ def _one_piece(cells) -> bool:
 
 
 def _pinched(cells) -> bool:
+    """Whether two cells meet only at a corner (every 2 × 2 block round the cells looked at)."""
+    cols, rows = [i for i, _ in cells], [j for _, j in cells]
     return any(((i, j) in cells and (i + 1, j + 1) in cells and (i + 1, j) not in cells and (i, j + 1) not in cells)
                or ((i + 1, j) in cells and (i, j + 1) in cells and (i, j) not in cells and (i + 1, j + 1) not in cells)
-               for i in range(-1, 13) for j in range(-1, 13))
+               for i in range(min(cols) - 1, max(cols) + 1) for j in range(min(rows) - 1, max(rows) + 1))
 
 
 @SETTINGS

@@ -4,6 +4,7 @@ gave), and so does every visual, with its colour, in ``scene.visuals``."""
 
 from __future__ import annotations
 
+import functools
 import math
 from typing import List
 
@@ -84,19 +85,17 @@ def _place(link_world: np.ndarray, pose: np.ndarray, placed: dict) -> tuple:
 
 
 QUATERNIONS_KEPT = 1024
-_QUATERNIONS: dict = {}   # a rotation's bytes -> its quaternion
 
 
 def _quaternion(rotation: np.ndarray) -> tuple:
     """:func:`~worldgen.core.poses.matrix_quat` of ``rotation``, remembered by its bytes (the last
     :data:`QUATERNIONS_KEPT`): the models of a big world share a few rotations (10 000 posts: one, twice each)."""
-    key = rotation.tobytes()
-    quaternion = _QUATERNIONS.get(key)
-    if quaternion is None:
-        if len(_QUATERNIONS) >= QUATERNIONS_KEPT:
-            _QUATERNIONS.clear()
-        quaternion = _QUATERNIONS[key] = poses.matrix_quat(rotation)
-    return quaternion
+    return _quaternion_of(rotation.tobytes(), rotation.dtype.str)
+
+
+@functools.lru_cache(maxsize=QUATERNIONS_KEPT)
+def _quaternion_of(data: bytes, dtype: str) -> tuple:
+    return poses.matrix_quat(np.frombuffer(data, dtype=dtype).reshape(3, 3))
 
 
 def _bare_link(ctx: ReadContext, link: Link, label: str, visuals: List[Shape]) -> None:
