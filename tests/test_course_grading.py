@@ -64,10 +64,14 @@ def test_a_course_package_that_is_nowhere_is_one_finding_per_submission(course, 
     assert all(r["ok"] for r in doc["results"] if r["path"].endswith(LAB))   # the package rows say nothing of it
 
 
-def test_the_course_package_beside_the_submissions_serves_them_all(course, tmp_path):
+@pytest.mark.parametrize("given", ["absolute", "submissions/", "."])
+def test_the_course_package_beside_the_submissions_serves_them_all(course, tmp_path, monkeypatch, given):
+    """However the folder is named: absolute, relative, or the working folder itself ($(find) gives an absolute
+    path, as rospack does; relative, the world would be looked up on Gazebo's resource path instead)."""
     folder = hand_in(course, tmp_path / "submissions")
     shutil.copytree(course / WORLD_PACKAGE, folder / WORLD_PACKAGE)
-    code, doc = grade(folder)
+    monkeypatch.chdir(tmp_path if given == "submissions/" else folder)
+    code, doc = grade(folder if given == "absolute" else Path(given))
     assert code == 0 and naming(doc, WORLD_PACKAGE) == []
     launches = [r for r in doc["results"] if f"/{LAB}/launch/" in r["path"]]
     assert len(launches) == 2 and all(r["checks"][:2] == ["launch", "parse"] for r in launches)

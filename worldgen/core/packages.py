@@ -153,11 +153,12 @@ class PackageIndex:
     """The packages under ordered ``roots``: each root is crawled at most once, each manifest read at most once.
 
     :meth:`find` looks a name up root by root; :meth:`packages` lists every package folder in crawl order (roots
-    in order), for callers that build their own name map (the first folder of a name wins, as in rospkg).
+    in order), for callers that build their own name map (the first folder of a name wins, as in rospkg). Roots
+    given relative are taken from the working folder: every folder found is absolute.
     """
 
     def __init__(self, roots: Iterable[str | Path]):
-        self.roots = [Path(r) for r in roots]
+        self.roots = [Path(r).absolute() for r in roots]   # $(find) gives an absolute path, as rospack does
         self._crawled: dict[Path, list[Path]] = {}
         self._names: dict[Path, str | None] = {}
         self._found: dict[str, Path | None] = {}
