@@ -56,6 +56,10 @@ def build_command(spec: Path, out_dir: Path, sdf_version: str | None, model_dir:
         raise InputError(f"{spec} is a Gazebo world, not a floorplan spec",
                          hint="build takes a .yaml/.json spec or a .txt grid (worldgen new NAME writes one); "
                               "check a world with worldgen validate, draw it with worldgen preview")
+    if out_dir.suffix.lower() in WORLD_SUFFIXES + (".launch", ".yaml") and not out_dir.is_dir():
+        raise InputError("-o is the folder the world is written into, and this is named like a file", path=out_dir,
+                         hint=f"give a folder: -o {out_dir.parent} writes {out_dir.parent / 'NAME'}.world, where NAME "
+                              "is the spec's name:")
     plan = load_spec(spec)
     building = build_geometry(plan)
     if model_dir and not building.walls:

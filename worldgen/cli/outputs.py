@@ -12,6 +12,7 @@ KINDS = {
     "png": ((".png",), "a PNG picture"),
     "html": ((".html", ".htm"), "an HTML page"),
     "yaml": ((".yaml", ".yml"), "a YAML floorplan spec"),
+    "junit": ((".xml",), "a JUnit XML report"),
 }
 
 

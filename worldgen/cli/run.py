@@ -76,6 +76,7 @@ def run(world, nodes, task, target, duration, rate, spawn, launch_file, robot, r
     from .outputs import check_suffix
 
     check_suffix(plot, "png", "--plot")
+    check_suffix(junit, "junit", "--junit")
     if html is not None:
         from ..view.page import require_three
 

@@ -90,6 +90,9 @@ def _validate(paths, robot, spawn, launch_file, model_paths, fmt, junit, jobs, l
                       model_paths=tuple(model_paths), lidar_no_hit=lidar_no_hit, skip_sim=skip_sim,
                       sdformat=sdformat)
     if junit is not None:
+        from .outputs import check_suffix
+
+        check_suffix(junit, "junit", "--junit")
         _check_writable(junit)
     if html is not None:
         from ..view.grades import check_report_folder
