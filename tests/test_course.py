@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import importlib.util
+import os
 import math
 from pathlib import Path
 from types import SimpleNamespace
@@ -185,3 +186,20 @@ def test_unwritable_workspace_is_one_line_and_force_replaces_a_file(tmp_path):
     forced = runner.invoke(main, ["course", "--workspace", str(tmp_path / "ws"), "--force"])
     assert forced.exit_code == 0, forced.output
     assert sorted(p.name for p in (tmp_path / "ws" / "src" / "intro_robo").iterdir()) == PACKAGES
+
+
+@pytest.mark.skipif(not os.path.isfile("/usr/bin/python3"), reason="no system Python to name")
+def test_the_build_command_names_ros_python_when_a_venv_python_comes_first(tmp_path):
+    """course says how to build what it wrote: with a virtualenv's python3 first on PATH, plain catkin_make picks
+    it and fails (no catkin_pkg), so the command names ROS's Python, as the README advises."""
+    from worldgen.packages.catkin_make import catkin_make_command
+
+    for folder, venv in (("venv", True), ("plain", False)):
+        bin_dir = tmp_path / folder / "bin"
+        bin_dir.mkdir(parents=True)
+        (bin_dir / "python3").write_text("#!/bin/sh\n")
+        (bin_dir / "python3").chmod(0o755)
+        if venv:
+            (tmp_path / folder / "pyvenv.cfg").write_text("home = /usr/bin\n")
+        expected = "catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3" if venv else "catkin_make"
+        assert catkin_make_command(str(bin_dir)) == expected

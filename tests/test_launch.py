@@ -231,6 +231,36 @@ def test_launch_command_needs_a_package(corpus, tmp_path):
     assert result.exit_code == 2 and "--package" in result.output
 
 
+def test_launch_warns_of_what_roslaunch_will_not_find(corpus, tmp_path, monkeypatch):
+    """The file is written (exit 0) and one warning line says what validate would fail it for: its own package's
+    node not written yet, a --package no workspace holds, a package without the world; none once they are there."""
+    monkeypatch.delenv("ROS_PACKAGE_PATH", raising=False)
+    pkg = make_package(tmp_path / "src", "my_worlds")
+    (pkg / "worlds").mkdir()
+    shutil.copy(corpus / ENCLOSED, pkg / "worlds" / "room.world")
+    world = str(pkg / "worlds" / "room.world")
+
+    def warnings(*argv) -> list[str]:
+        result = CliRunner().invoke(main, ["launch", *argv, "--force"])
+        assert result.exit_code == 0, result.output
+        return [line for line in result.stderr.splitlines() if line.startswith("worldgen: warning: ")]
+
+    [missing] = warnings(world, "--node", "my_worlds/stop_at_wall.py", "--node", "turtlebot3_teleop/teleop.py")
+    assert "my_worlds/stop_at_wall.py is not in" in missing and "write scripts/stop_at_wall.py" in missing
+    (pkg / "scripts").mkdir()
+    (pkg / "scripts" / "stop_at_wall.py").write_text("#!/usr/bin/env python3\n")
+    assert warnings(world, "--node", "my_worlds/stop_at_wall.py") == []
+    loose = tmp_path / "room.world"
+    shutil.copy(corpus / ENCLOSED, loose)
+    [nowhere] = warnings(str(loose), "--package", "nowhere", "-o", str(tmp_path / "out"))
+    assert "the package nowhere is neither in the workspace" in nowhere and "--package DIR" in nowhere
+    monkeypatch.setenv("ROS_PACKAGE_PATH", str(tmp_path / "src"))
+    assert warnings(str(loose), "--package", "my_worlds", "-o", str(tmp_path / "out")) == []
+    (tmp_path / "other.world").write_bytes(loose.read_bytes())
+    [no_world] = warnings(str(tmp_path / "other.world"), "--package", "my_worlds", "-o", str(tmp_path / "out"))
+    assert "the package my_worlds" in no_world and "has no worlds/other.world" in no_world
+
+
 # ----------------------------------------------------------------------------------------------------- reader
 
 def test_reader_round_trip(tmp_path):

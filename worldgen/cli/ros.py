@@ -105,6 +105,10 @@ def launch_command(world: Path, package: str | None, name: str | None, model: st
     said = update_notes(updated)
     written = write_files({**files, **updated}, force=force, within=world_pkg or folder, update=set(updated))
     target = written[0]
+    from ..launch.unfound import unfound
+
+    for line in unfound(target, package, world_pkg if inside else None, world.name, node_refs, ros):
+        click.echo(f"worldgen: warning: {line}", err=True)
     for extra in written[1:]:
         click.echo(said.get(extra, f"wrote {extra} (the ros_gz_bridge topics; install params/ with the package)"))
     where = {"given": "--spawn", "spec": "the spec's robot pose", "world": "the deepest free point of the room",
@@ -208,7 +212,9 @@ def course_command(workspace: Path, ros: str, cmd_vel: str | None, force: bool) 
 
         cmd_vel_type(ros, cmd_vel)
     target = write_course(workspace, force=force)
-    click.echo(f"wrote {target}; build it with: cd {workspace} && catkin_make")
+    from ..packages.catkin_make import catkin_make_command
+
+    click.echo(f"wrote {target}; build it with: cd {workspace} && {catkin_make_command()}")
 
 
 COMMANDS = [launch_command, scaffold_command, course_command]
