@@ -126,6 +126,19 @@ def test_drive_reports_a_collision_with_exit_1(world):
     assert "FAILED: touched room/Wall_" in result.output
 
 
+def test_drive_out_of_an_open_room_says_so_not_to_tune_the_gains(tmp_path):
+    """Facing a missing wall, the law drives out of the room and ends with nothing ahead: the reason is the
+    world (validate names the gap), not the gains; no advice to try a larger --kp."""
+    spec = tmp_path / "three_walls.yaml"
+    spec.write_text("name: three_walls\nsegments:\n"
+                    "  - {from: [-2, -2], to: [-2, 2]}\n  - {from: [-2, -2], to: [2, -2]}\n"
+                    "  - {from: [-2, 2], to: [2, 2]}\n")
+    result = CliRunner().invoke(main, ["drive", str(spec), "--spawn", "0,0", "--duration", "20"])
+    assert result.exit_code == 1, result.output
+    assert "no wall ahead at the end: the robot saw nothing to stop at" in result.output
+    assert "worldgen validate WORLD names the gaps" in result.output and "--kp" not in result.output
+
+
 def test_drive_spin(world):
     result = CliRunner().invoke(main, ["drive", str(world), "--behavior", "spin", "--robot", "waffle",
                                        "--omega", "1.82", "--format", "json"])

@@ -102,6 +102,9 @@ def test_every_submission_meets_the_same_worlds(tmp_path):
     assert [(t.who, t.passed, t.total) for t in marks] == [("subs/ann", 2, 2), ("subs/ben", 0, 2)]
     rerun = rerun_maker([], ["--task", "stop-at-wall"])
     text = worlds_text(runs, 1.0, rerun, "stop-at-wall")
+    header, first = text.splitlines()[:2]   # each submission in a column of its own, under its own heading
+    assert header.split() == ["world", "submission", "verdict", "front", "path", "turned", "contacts"]
+    assert first.split()[:3] == ["arena_1", "subs/ann", "ok"] and first.index("subs/ann") == header.index("submission")
     assert "subs/ann: stop-at-wall passed in 2 of 2 worlds (100%); --min-pass 1: PASS" in text
     assert "arena_1: worldgen run --worlds arena:1@1 subs/ben/scripts/stop_at_wall.py --task stop-at-wall" in text
     doc = json.loads(worlds_json(runs, 1.0, rerun))

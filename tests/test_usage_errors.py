@@ -36,6 +36,13 @@ def test_a_usage_error_is_one_line(argv, named, helped):
     assert "Usage:" not in line
 
 
+def test_a_misspelt_command_is_answered_with_the_nearest_one():
+    result = CliRunner().invoke(main, ["valdate", "x.world"])
+    assert result.exit_code == 2 and "No such command 'valdate'. Did you mean 'validate'?" in result.stderr
+    far = CliRunner().invoke(main, ["zzz"])
+    assert far.exit_code == 2 and "Did you mean" not in far.stderr
+
+
 def test_usage_error_of_the_installed_command():
     """The real entry point (``python -m worldgen``), not click's runner: the same one line."""
     done = subprocess.run([sys.executable, "-m", "worldgen", "validate", "--skip-simm", "x.world"],

@@ -203,13 +203,14 @@ def worlds_text(runs: Sequence[WorldRun], min_pass: float, rerun: Callable[[Worl
                 task: Optional[str]) -> str:
     """One line per world (and submission) with the numbers that matter and its errors below, the pass rate per
     node or submission against ``min_pass``, and each failing world with the command that runs it again."""
-    rows = [["world", "verdict", "front", "path", "turned", "contacts"]]
+    classes = any(len(run.results) > 1 for run in runs)   # a class: a column naming each submission
+    rows = [["world", *(["submission"] if classes else []), "verdict", "front", "path", "turned", "contacts"]]
     errors = []
     for run in runs:
         for r in run.results:
             m = r.metrics
-            name = run.world.name if len(run.results) <= 1 else f"{run.world.name}  {r.path}"
-            rows.append([name, "ok" if r.ok else "FAIL", _m(m.get("final_front_distance_m")),
+            rows.append([run.world.name, *([r.path] if classes else []), "ok" if r.ok else "FAIL",
+                         _m(m.get("final_front_distance_m")),
                          _m(m.get("path_length_m")),
                          "–" if m.get("rotation_rad") is None else f"{m['rotation_rad'] / math.tau:+.2f} turns",
                          str(len(m.get("contacts") or []))])

@@ -76,6 +76,17 @@ class _Group(click.Group):
                 self.add_command(command)
         return self.commands.get(name)
 
+    def resolve_command(self, ctx: click.Context, args: list[str]):
+        """click's, with the nearest command suggested for a misspelt one (``valdate``: did you mean validate?)."""
+        name = args[0] if args else ""
+        if name and not name.startswith("-") and self.get_command(ctx, name) is None:
+            import difflib
+
+            near = difflib.get_close_matches(name, self.list_commands(ctx), n=1)
+            if near:
+                ctx.fail(f"No such command {name!r}. Did you mean {near[0]!r}?")
+        return super().resolve_command(ctx, args)
+
     def main(self, *args, **kwargs):
         _lenient_streams()
         return super().main(*args, **kwargs)

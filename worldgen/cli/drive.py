@@ -242,9 +242,12 @@ def _failures(run: dict) -> list[str]:
     reasons = []
     if run["contacts"]:
         reasons.append(_contacts_text(run).strip())
+    if run["final_distance"] is None:   # the law had nothing to stop at: not a matter of gains
+        reasons.append("no wall ahead at the end: the robot saw nothing to stop at (an open side or a gap the "
+                       "robot left through? worldgen validate WORLD names the gaps)")
+        return reasons
     if not run["within_tolerance"]:
-        reasons.append("no wall ahead at the end" if run["final_distance"] is None else
-                       f"ended {run['final_distance'] - run['target']:+.3f} m from the target")
+        reasons.append(f"ended {run['final_distance'] - run['target']:+.3f} m from the target")
     if not run["stopped"]:
         reasons.append("still moving at the end" if run.get("stop_time") is not None else
                        f"never came within {run.get('stop_band', 0):g} m of the target to stop (try a larger "

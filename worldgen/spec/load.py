@@ -92,8 +92,12 @@ def read_spec(src: Source, root: Node | None) -> Spec:
     if root is None:
         src.fail("the spec is empty", None, hint="start from the one `worldgen new NAME` writes")
     if not isinstance(root.value, dict):
-        src.fail(f"a spec must be a block of keys (name:, walls:, rooms: …), not {describe(root.value)}",
-                 root.line, hint="start from the one `worldgen new NAME` writes")
+        bridge = isinstance(root.value, list) and any(isinstance(item.value, dict) and "ros_topic_name" in item.value
+                                                      for item in root.value)
+        src.fail("this is a ros_gz_bridge parameter file (a list of topics), not a floorplan spec" if bridge else
+                 f"a spec must be a block of keys (name:, walls:, rooms: …), not {describe(root.value)}", root.line,
+                 hint="validate the package that holds it: its launch file and world are checked with it" if bridge
+                 else "start from the one `worldgen new NAME` writes")
 
     if is_map_yaml(root.value):   # a ROS map_server map's own YAML
         return map_spec(src, root)
