@@ -243,3 +243,28 @@ def test_an_early_run_that_read_another_world_is_simulated_again_on_the_checked_
     early.read(scene)
     sim_run.judge(result, early, scene, options, (0.0, None), tmp_path / "job", SIM_JOB)
     assert result.metrics["lidar_nearest_m"] < 1.2   # the small room's walls (the big one's are 1.9 m away)
+
+
+def test_rooms_simulated_ahead_give_what_each_room_gives_from_its_own_spawn(tmp_path):
+    """A world of several closed rooms and no spawn: under the fork server the rooms' simulations start ahead of
+    the checks that wait for them (check.sim_run.Ahead), each still driving from its own room's spawn, with the
+    numbers that room gives when validated alone from that spawn."""
+    spec = tmp_path / "three.yaml"
+    spec.write_text("name: three\nrooms:\n"
+                    "  - {name: wide, rect: {center: [4, 4], size: [5, 3]}}\n"
+                    "  - {name: small, rect: {center: [-3, 0], size: [2, 2]}}\n"
+                    "  - {name: long, rect: {center: [0, -6], size: [7, 2.5]}}\n")
+
+    def results(*extra) -> list[dict]:
+        proc = subprocess.run([sys.executable, "-m", "worldgen", "validate", str(spec), "--format", "json", *extra],
+                              capture_output=True, text=True, env=dict(os.environ, PYTHONPATH=str(REPO)), timeout=120)
+        assert proc.returncode in (0, 1) and "Traceback" not in proc.stderr, proc.stderr
+        return json.loads(proc.stdout)["results"]
+
+    sim_numbers = ("stop_distance_m", "stop_time_s", "spin_drift_m", "settle_height_m", "sim_seconds")
+    rooms = results()
+    assert len(rooms) == 3 and len({r["metrics"]["stop_distance_m"] for r in rooms}) > 1
+    for room in rooms:
+        [alone] = results("--spawn", ",".join(f"{v:g}" for v in room["spawn"]))
+        assert [room["metrics"].get(k) for k in sim_numbers] == [alone["metrics"].get(k) for k in sim_numbers]
+        assert room["checks"] == alone["checks"]

@@ -258,6 +258,28 @@ def test_exit_code_2_for_bad_input_with_one_line(tmp_path):
         assert "Traceback" not in proc.stderr
 
 
+@pytest.mark.parametrize("name, what", [("stop_at_wall.py", "a Python file"), ("room.html", "a page"),
+                                        ("room.png", "a picture"), ("map.pgm", "a map image"),
+                                        ("gains.csv", "a table")])
+def test_a_file_worldgen_writes_but_no_command_reads_says_what_it_is(tmp_path, name, what):
+    """Not 'not well-formed XML, fix the tag': what the file is, and what to do with it instead."""
+    path = tmp_path / name
+    path.write_bytes(b"\x89PNG\r\n" if name.endswith("png") else b"print('hi')\n")
+    result = run_cli(path)
+    assert result.exit_code == 2
+    (line,) = result.stderr.splitlines()
+    assert line.startswith(f"worldgen: error: {path}: is {what}") and "not a world, spec or launch file" in line
+
+
+def test_a_bridge_parameter_file_is_named_as_one(tmp_path):
+    params = tmp_path / "turtlebot3_bridge.yaml"
+    params.write_text("- ros_topic_name: /scan\n  gz_topic_name: /scan\n  ros_type_name: sensor_msgs/msg/LaserScan\n")
+    code, doc = as_json(params, "--skip-sim")
+    [finding] = [f for f in doc["results"][0]["findings"] if f["severity"] == "error"]
+    assert code == 1 and "ros_gz_bridge parameter file" in finding["message"]
+    assert "validate the package that holds it" in finding["fix"]
+
+
 def test_exit_codes_0_and_1(tmp_path):
     world = write_world(tmp_path / "room.world", room_walls(4.0))
     assert run_cli(world, "--skip-sim").exit_code == 0

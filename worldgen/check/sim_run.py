@@ -7,7 +7,8 @@ one: at most :data:`EARLY_WORLD_BYTES`) while this process does, and says what i
 (:func:`~worldgen.check.sim_job.scene_digest`). :func:`judge` takes its numbers only when that is the scene
 checked here, and simulates this scene when it is not (the file changed between the two reads), so the
 simulator always drives in exactly the scene the geometric checks looked at. A crash, a timeout or an error
-in the child becomes one error finding naming the stage it happened in.
+in the child becomes one error finding naming the stage it happened in. :class:`Ahead` starts the simulations
+of a world's several spawns (its closed rooms) a few at a time ahead of the checks that wait for them.
 """
 
 from __future__ import annotations
@@ -22,6 +23,7 @@ from .report import Result
 from .sim_job import in_reach
 
 EARLY_WORLD_BYTES = 1 << 20   # a world (or a spec's SDF) up to this size is read by an early child as well
+SIMS_AHEAD = 2                # a world's rooms: simulations under way at once (two cores; each a fork's memory)
 
 
 def start_early(result: Result, source, options, tmp: Path, job: str):
@@ -73,6 +75,36 @@ def start_sim(result: Result, scene, options, tmp: Path, job: str):
     kwargs = _kwargs(result, options, tmp)
     in_reach(scene, result.spawn, kwargs["urdf"]).save(scene_file)   # what the child loads, and no more
     return start_isolated(job, {**kwargs, "scene_file": str(scene_file)}, options.sim_timeout)
+
+
+class Ahead:
+    """The simulations of ``results`` (one scene, a spawn each: a world's closed rooms), each in a folder of its
+    own under ``tmp`` (its scene file, its stage), started up to :data:`SIMS_AHEAD` at a time under a fork server,
+    so that one room's runs while the checks wait for another's; without a server (or with ``--skip-sim``)
+    none starts here and each room's checks start their own, as for a single spawn. The simulations are the
+    same ones, in the same scene: only when they run changes. :meth:`cancel` stops those not taken."""
+
+    def __init__(self, results: list[Result], scene, options, tmp: Path, job: str):
+        from ..sim.forkserver import active
+
+        self.results, self.scene, self.options, self.job = results, scene, options, job
+        self.folders = [tmp / f"spawn{i}" for i in range(len(results))]
+        self.started: dict[int, object] = {}
+        self.ahead = SIMS_AHEAD if not options.skip_sim and active() is not None else 0
+
+    def take(self, i: int) -> tuple[Path, object | None]:
+        """Room ``i``'s folder and its simulation (None: not started here), the next ones started first."""
+        for k in range(i, min(i + self.ahead, len(self.results))):
+            if k not in self.started:
+                self.folders[k].mkdir(exist_ok=True)
+                self.started[k] = start_sim(self.results[k], self.scene, self.options, self.folders[k], self.job)
+        self.folders[i].mkdir(exist_ok=True)
+        return self.folders[i], self.started.pop(i, None)
+
+    def cancel(self) -> None:
+        for sim in self.started.values():
+            sim.cancel()
+        self.started.clear()
 
 
 def _kwargs(result: Result, options, tmp: Path) -> dict:

@@ -105,6 +105,18 @@ def check_options(options: Options) -> None:
 
 # ------------------------------------------------------------------------------------------------------ plan
 
+# files worldgen writes or a package holds that no command reads as its world: what each is, and what to do
+NOT_READ = {
+    ".py": ("a Python file (a node, or setup.py)",
+            "run a node with worldgen run WORLD NODE.py; validate the package that holds it"),
+    ".html": ("a page (worldgen view, drive, run and validate --html write these)", "open it in a web browser"),
+    ".htm": ("a page", "open it in a web browser"),
+    **{suffix: ("a picture", "validate the world or spec it shows") for suffix in (".png", ".jpg", ".jpeg", ".svg")},
+    ".pgm": ("a map image", "validate the map's .yaml (map_server's), which names this image"),
+    ".csv": ("a table (drive --csv, run --csv)", "validate the world or spec it was made in"),
+}
+
+
 def input_kind(path: Path) -> str:
     """``package``, ``model-folder``, ``folder`` (any other folder), ``spec``, ``launch`` or ``world`` (by suffix,
     else by content)."""
@@ -119,6 +131,9 @@ def input_kind(path: Path) -> str:
         return "launch"
     if path.suffix.lower() in SPEC_SUFFIXES:
         return "spec"
+    if path.suffix.lower() in NOT_READ:
+        what, hint = NOT_READ[path.suffix.lower()]
+        raise InputError(f"is {what}, not a world, spec or launch file", path=path, hint=hint)
     try:
         with open(path, "rb") as handle:
             head = handle.read(4096).decode("utf-8", "replace")
@@ -454,13 +469,15 @@ def _check_world(result: Result, source: WorldSource, options: Options, tmp: Pat
         return [_check_from(result, scene, options, tmp, early)]
     from .nospawn import default_spawns
 
-    results = []
-    for place in default_spawns(scene, result.robot):
-        one = dc_replace(result, spawn=place.spawn, spawn_source=place.source, room=place.room,
-                         findings=list(result.findings) + list(place.findings), checks=list(result.checks),
-                         skipped=dict(result.skipped), metrics=dict(result.metrics))
-        results.append(_check_from(one, scene, options, tmp))
-    return results
+    rooms = [dc_replace(result, spawn=place.spawn, spawn_source=place.source, room=place.room,
+                        findings=list(result.findings) + list(place.findings), checks=list(result.checks),
+                        skipped=dict(result.skipped), metrics=dict(result.metrics))
+             for place in default_spawns(scene, result.robot)]
+    sims = sim_run.Ahead(rooms, scene, options, tmp, SIM_JOB)
+    try:
+        return [_check_from(one, scene, options, *sims.take(i)) for i, one in enumerate(rooms)]
+    finally:
+        sims.cancel()
 
 
 def _check_from(result: Result, scene, options: Options, tmp: Path, early=None) -> Result:
