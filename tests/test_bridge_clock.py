@@ -66,4 +66,9 @@ def test_rate_and_sleep_loops_wake_at_their_deadlines(tag, tmp_path, rate, per_s
             exact = [woke - deadline < 1000 for deadline, woke in pairs[1:]]
             assert sum(exact) >= 0.9 * len(exact), (name, pairs)
     rate10 = [d for d, _ in loops["rate10"]]
-    assert rate10[:5] == [k * NS // 10 for k in range(1, 6)]   # made at time 0: its own lattice
+    # made at time 0, the loop keeps its own lattice (each deadline one period after the last) unless it has fallen
+    # more than two periods behind (a loaded machine leaving its thread unscheduled): then rospy.Rate starts anew
+    # from the time it was called at, more than three periods after the last deadline; never anything between
+    period = NS // 10
+    assert rate10[0] == period
+    assert all(b - a == period or b - a > 3 * period for a, b in zip(rate10, rate10[1:])), rate10[:20]
