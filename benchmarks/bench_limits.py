@@ -197,12 +197,12 @@ def _fifo(tmp: Path) -> List[str]:
 def _spec_dev_zero(tmp: Path) -> List[str]:
     link = tmp / "zero.yaml"
     link.symlink_to("/dev/zero")
-    return ["build", str(link), "-o", str(tmp / "out.world")]
+    return ["build", str(link), "-o", str(tmp / "out")]
 
 
 def _deep(tmp: Path) -> List[str]:
     return ["build", str(_write(tmp, "deep.yaml", "name: deep\nwalls: " + "[" * 40000 + "\n")),
-            "-o", str(tmp / "out.world")]
+            "-o", str(tmp / "out")]
 
 
 # Inputs that once were silently wrong or crashed (issue: hostile input): each must now get a verdict or one line.
@@ -352,17 +352,17 @@ CASES = [
          REFUSAL, (2,)),
     Case("mesh-soup-10000", lambda t: _validate(mesh_soup(t, 10000)), BOUNDED),
     Case("mesh-soup-100000", lambda t: _validate(mesh_soup(t, 100000)), BOUNDED),
-    Case("map-speckle-1500-30%", lambda t: ["build", str(speckled_map(t, 1500)), "-o", str(t / "out.world")],
+    Case("map-speckle-1500-30%", lambda t: ["build", str(speckled_map(t, 1500)), "-o", str(t / "out")],
          BOUNDED),
-    Case("map-speckle-1500-2%", lambda t: ["build", str(speckled_map(t, 1500, 0.02)), "-o", str(t / "o.world")],
+    Case("map-speckle-1500-2%", lambda t: ["build", str(speckled_map(t, 1500, 0.02)), "-o", str(t / "o")],
          BOUNDED),
-    Case("map-9000-square", lambda t: ["build", str(speckled_map(t, 9000, 0.0)), "-o", str(t / "o.world")],
+    Case("map-9000-square", lambda t: ["build", str(speckled_map(t, 9000, 0.0)), "-o", str(t / "o")],
          REFUSAL, (2,)),
     Case("grid-checker-1400", lambda t: ["build", str(_write(t, "c.txt", "\n".join(
         ("#." if r % 2 == 0 else ".#") * 700 for r in range(1400)) + "\n")), "-o", str(t / "o")], REFUSAL, (2,)),
-    Case("yaml-merge-bomb", lambda t: ["build", str(_write(t, "m.yaml", MERGE_BOMB)), "-o", str(t / "o.world")],
+    Case("yaml-merge-bomb", lambda t: ["build", str(_write(t, "m.yaml", MERGE_BOMB)), "-o", str(t / "o")],
          REFUSAL, (2,)),
-    Case("yaml-alias-bomb", lambda t: ["build", str(_write(t, "a.yaml", ALIAS_BOMB)), "-o", str(t / "o.world")],
+    Case("yaml-alias-bomb", lambda t: ["build", str(_write(t, "a.yaml", ALIAS_BOMB)), "-o", str(t / "o")],
          REFUSAL, (2,)),
     Case("yaml-deep-40000", _deep, REFUSAL, (2,)),
     Case("yaml-dev-zero", _spec_dev_zero, REFUSAL, (2,)),
