@@ -304,6 +304,44 @@ def _link_to_root(tmp: Path) -> List[str]:
     return _validate(tmp / "submissions")
 
 
+def _hostile_launch_py(tmp: Path) -> List[str]:
+    """A launch.py whose values would grow to gigabytes and whose lists hold themselves: read, never run."""
+    path = tmp / "hostile.launch.py"
+    path.write_text("from launch import LaunchDescription\nfrom launch_ros.actions import Node\n\n"
+                    "def generate_launch_description():\n"
+                    "    s = 'a' * 1000000\n    t = s.replace('a', s)\n    u = ''.join([s] * 1000000)\n"
+                    "    w = '{0:{1}}'.format('x', 999999999)\n    l = ['a']\n    l.append(l)\n    l.append(l)\n"
+                    "    return LaunchDescription([Node(package='p', executable='x', arguments=[l, t, u, w])])\n")
+    return _validate(path)
+
+
+def _launch_include_fanout(tmp: Path) -> List[str]:
+    """roslaunch XML including 5 files at each of 5 levels (3 905 includes): refused past 1 000 launch files."""
+    for level in range(6):
+        inner = "".join(f"<include file='{tmp}/l{level + 1}.launch'/>" for _ in range(5)) if level < 5 else ""
+        (tmp / f"l{level}.launch").write_text(f"<launch>{inner}</launch>")
+    return _validate(tmp / "l0.launch")
+
+
+def _symlink_loops(tmp: Path) -> List[str]:
+    """A class folder whose submissions link back up the tree (catkin_pkg's walk never ends on it)."""
+    root = tmp / "class"
+    for student in ("ana/src/a", "ben/catkin_ws/src/b"):
+        (root / student).mkdir(parents=True)
+        (root / student / "package.xml").write_text(
+            f"<package format='2'><name>{Path(student).name}</name><version>0.0.1</version><description>d"
+            "</description><maintainer email='a@b.c'>a</maintainer><license>BSD</license></package>\n")
+    (root / "ana" / "src" / "up").symlink_to(root)
+    (root / "ben" / "catkin_ws" / "src" / "b" / "back").symlink_to(root / "ben")
+    return _validate(root)
+
+
+def _many_markings(tmp: Path) -> List[str]:
+    """A spec with more floor lines than worldgen builds: refused before any is read further."""
+    lines = "".join(f"  - {{points: [[0, {i}], [1, {i}]], color: Gazebo/Red}}\n" for i in range(2001))
+    return ["build", str(_write(tmp, "marks.yaml", f"name: marks\nlines:\n{lines}")), "-o", str(tmp / "o")]
+
+
 CAMPAIGN = [
     Case("mesh-soup-obj-250k", lambda t: ["validate", str(_soup_obj(t, 250_000))], BOUNDED, (0, 1)),
     Case("mesh-soup-obj-250k-view", lambda t: ["view", str(_soup_obj(t, 250_000)), "-o", str(t / "s.html")],
@@ -319,6 +357,10 @@ CAMPAIGN = [
     Case("grid-random-400", lambda t: ["validate", str(_random_grid(t, 400))], REFUSAL, (2,)),
     Case("yaml-plain-1.1MB", lambda t: ["build", str(_plain_big_yaml(t)), "-o", str(t / "o")], BOUNDED, (2,)),
     Case("folder-link-to-root", _link_to_root, BOUNDED, (0, 1)),
+    Case("folder-symlink-loops", _symlink_loops, REFUSAL, (0, 1)),
+    Case("launch-py-hostile", _hostile_launch_py, REFUSAL, (0, 1)),
+    Case("launch-include-fanout", _launch_include_fanout, REFUSAL, (1,)),
+    Case("spec-many-markings", _many_markings, REFUSAL, (2,)),
 ] + [   # each generator at the largest footprint and its finest grain (the arena's carving once took minutes)
     Case(f"generate-{kind}-200m", lambda t, kind=kind, flags=flags: [
         "generate", kind, "--seed", "3", "--size", "200x200", *flags, "-o", str(t / "g")], BOUNDED, (0,))

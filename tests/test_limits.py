@@ -1,5 +1,6 @@
 """Every limit of the README's Limits section, tripped by a small bomb: one line and exit 2 (or, in validate, a failed
-parse check), fast, never a traceback; and the big inputs under the limits handled the way the README says."""
+parse check), never a traceback; and the big inputs under the limits handled the way the README says. How fast each
+is refused or handled is measured by benchmarks/bench_limits.py, not here."""
 
 from __future__ import annotations
 
@@ -8,7 +9,6 @@ import random
 import re
 import struct
 import sys
-import time
 
 import numpy as np
 import pytest
@@ -72,14 +72,12 @@ def test_readme_states_each_limit(number):
 def test_a_fifo_or_device_is_refused_at_once(tmp_path):
     fifo = tmp_path / "pipe.world"
     os.mkfifo(fifo)
-    start = time.perf_counter()
     one_line_refusal(CliRunner().invoke(main, ["validate", "--skip-sim", str(fifo)]), "not a regular file")
     spec = tmp_path / "zero.yaml"
     spec.symlink_to("/dev/zero")
     one_line_refusal(CliRunner().invoke(main, ["build", str(spec), "-o", str(tmp_path / "out")]),
                      "not a regular file")
     assert not (tmp_path / "out").exists()
-    assert time.perf_counter() - start < 5
 
 
 def test_a_world_over_the_size_limit_is_not_read(tmp_path):
@@ -125,9 +123,7 @@ def test_read_capped_stops_at_the_limit(tmp_path):
 def test_bad_yaml_is_one_line(tmp_path, text, words):
     spec = tmp_path / "t.yaml"
     spec.write_text(text)
-    start = time.perf_counter()
     one_line_refusal(CliRunner().invoke(main, ["build", str(spec), "-o", str(tmp_path / "out")]), *words)
-    assert time.perf_counter() - start < 5
     assert not (tmp_path / "out").exists()
 
 
@@ -145,10 +141,8 @@ def test_alias_and_merge_bombs_are_refused_fast(tmp_path, merge):
     spec = tmp_path / "bomb.yaml"
     spec.write_text(bomb(merge))
     assert len(spec.read_bytes()) < 600
-    start = time.perf_counter()
     one_line_refusal(CliRunner().invoke(main, ["build", str(spec), "-o", str(tmp_path / "out")]),
                      f"more than {nodes.MAX_VALUES:,} values")
-    assert time.perf_counter() - start < 3
 
 
 def test_aliases_that_stay_small_still_work(tmp_path):
@@ -178,9 +172,8 @@ def test_a_bad_spec_beside_a_good_world_is_left_alone(tmp_path):
 def test_floor_markings_are_bounded(tmp_path, lines, words):
     spec = tmp_path / "marks.yaml"
     spec.write_text(f"name: marks\nlines:\n{lines}")
-    start = time.perf_counter()
     one_line_refusal(CliRunner().invoke(main, ["build", str(spec), "-o", str(tmp_path / "out")]), words, "README")
-    assert time.perf_counter() - start < 5 and not (tmp_path / "out").exists()
+    assert not (tmp_path / "out").exists()
 
 
 # -------------------------------------------------------------------------------------------------- includes
@@ -207,11 +200,9 @@ def fanout(tmp_path, fan, depth):
 ])
 def test_include_fanout_and_depth_are_refused(tmp_path, fan, depth, words):
     path, models = fanout(tmp_path, fan, depth)
-    start = time.perf_counter()
     result = CliRunner().invoke(main, ["preview", str(path), "--model-path", str(models), "-o",
                                        str(tmp_path / "p.png")])
     one_line_refusal(result, words, "README")
-    assert time.perf_counter() - start < 5
 
 
 def test_includes_under_the_limit_are_read(tmp_path):
@@ -238,9 +229,7 @@ def test_a_triangle_soup_is_taken_as_its_hull_with_a_warning(tmp_path):
             "<uri>soup.stl</uri></mesh></geometry></collision></link></model>")
     path = tmp_path / "soup.world"
     path.write_text(world(room() + mesh))
-    start = time.perf_counter()
     result = CliRunner().invoke(main, ["validate", "--skip-sim", "--spawn", "3,0", "--format", "json", str(path)])
-    assert time.perf_counter() - start < 10
     assert "triangle soup" in result.stdout and "convex hull" in result.stdout
     assert '"spawn_inside": "soup/l/c"' in result.stdout   # the hull is solid: (3, 0) lies inside it
 
@@ -283,10 +272,8 @@ def test_ten_thousand_boxes_are_checked_in_seconds(tmp_path):
     body = "".join(box(f"b{i}", 1 + (i % 100) * 0.5, 1 + (i // 100) * 0.5) for i in range(10000))
     path = tmp_path / "grid.world"
     path.write_text(world(body))
-    start = time.perf_counter()
     result = CliRunner().invoke(main, ["validate", "--skip-sim", "--spawn", "-1,-1", str(path)])
     assert result.exit_code == 1 and "the walls do not surround the spawn" in result.stdout
-    assert time.perf_counter() - start < 30
 
 
 def test_unite_equals_union_all():
@@ -357,10 +344,8 @@ def test_a_launch_include_fanout_is_refused(tmp_path):
     for level in range(6):
         inner = "".join(f"<include file='{tmp_path}/l{level + 1}.launch'/>" for _ in range(5)) if level < 5 else ""
         (tmp_path / f"l{level}.launch").write_text(f"<launch>{inner}</launch>")
-    start = time.perf_counter()
     result = CliRunner().invoke(main, ["validate", "--skip-sim", str(tmp_path / "l0.launch")])
     assert result.exit_code == 1 and "more than 1000 launch files" in result.stdout
-    assert time.perf_counter() - start < 5
 
 
 def test_past_many_shapes_the_gap_search_lists_one_way_out(monkeypatch):
@@ -381,10 +366,9 @@ def test_a_grid_of_lone_cells_is_refused(tmp_path):
     path = tmp_path / "checker.txt"
     path.write_text("\n".join("#." * 170 if r % 2 == 0 else ".#" * 170 for r in range(340)) + "\n")  # 57 800 posts
     assert grid.MAX_PIECES == 50_000
-    start = time.perf_counter()
     one_line_refusal(CliRunner().invoke(main, ["build", str(path), "-o", str(tmp_path / "out")]),
                      "57,800 posts (lone # cells) at least, more than the 50,000")
-    assert time.perf_counter() - start < 5 and not (tmp_path / "out").exists()
+    assert not (tmp_path / "out").exists()
 
 
 def test_a_closed_way_out_reaches_a_point_as_the_whole_space_does():

@@ -4,7 +4,6 @@ symlinked folders), and on the symlink loops catkin_pkg cannot walk."""
 from __future__ import annotations
 
 import os
-import time
 
 import pytest
 
@@ -59,7 +58,5 @@ def test_symlink_loops_are_walked_once_each(tmp_path):
     (root / "ana" / "src" / "up").symlink_to(root)
     (root / "ben" / "catkin_ws" / "src" / "b" / "back").symlink_to(root / "ben")
     (root / "ana-old" / "side").symlink_to(root / "ben" / "catkin_ws")
-    start = time.perf_counter()
     found = crawl(root)
-    assert time.perf_counter() - start < 2
     assert len({os.path.realpath(p) for p in found}) == len(found) == 4
