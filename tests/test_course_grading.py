@@ -107,3 +107,21 @@ def test_the_run_leaves_out_the_package_the_submissions_share(course, tmp_path):
     (launcher / "package.xml").write_text(f'<package format="2"><name>launcher</name><version>0.1.0</version>'
                                           f'<exec_depend>{LAB}</exec_depend></package>', encoding="utf-8")
     assert depended_packages(submissions(folder), "stop-at-wall") == [folder / WORLD_PACKAGE]
+
+
+def test_a_submission_without_its_package_xml_is_a_failed_row(course, tmp_path):
+    """Not passed over: a student's folder holding the lab's files but no package.xml gets one error row naming
+    it; a folder of other things (notes) beside the submissions gets none."""
+    folder = hand_in(course, tmp_path / "submissions", students=("alice", "bob", "eve"))
+    shutil.copytree(course / WORLD_PACKAGE, folder / WORLD_PACKAGE)
+    (folder / "eve" / LAB / "package.xml").unlink()
+    (folder / "notes").mkdir()
+    (folder / "notes" / "grading.txt").write_text("late: bob\n")
+    code, doc = grade(folder)
+    assert code == 1
+    [eve] = [r for r in doc["results"] if "/eve" in r["path"]]
+    assert eve["path"] == str(folder / "eve") and not eve["ok"]
+    [finding] = eve["findings"]
+    assert finding["check"] == "package" and "no package.xml" in finding["message"]
+    assert not [r for r in doc["results"] if "notes" in r["path"]]
+    assert all(r["ok"] for r in doc["results"] if "/eve" not in r["path"])

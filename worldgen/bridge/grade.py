@@ -16,7 +16,7 @@ from __future__ import annotations
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
-from ..check.discover import depended_on
+from ..check.discover import depended_on, unpackaged, unpackaged_finding
 from ..check.discover import shard as take_shard
 from ..check.report import Result
 from ..core.errors import InputError, WorldgenError
@@ -87,18 +87,28 @@ def grade_folder(folder: Path, world_path: Path | None, request: RunRequest, tra
     task = request.task
     task_context(world, task)   # a line-follow world without tape, say: one line before anything starts
     found = submissions(folder)
+    packaged = any((p / MANIFEST).is_file() for p in found)
+    handed_in = set(unpackaged(folder, found)) if packaged else set()   # no package.xml: a failed row, not left out
     found = [p for p in found if p not in depended_packages(found, task, nodes)]   # cli.run names them
+    found = sorted([*found, *handed_in])
     if not found:
         raise InputError("holds no submissions (no catkin packages, no folders)", path=folder,
                          hint="give the folder holding one folder or package per student")
     if shard is not None:
         found = take_shard(found, *shard, key=str)
     options = request.options(world, record_scans=each is not None)
-    planned = {s: _plan(s, task, nodes, python, transport) for s in found}
+    planned = {s: _plan(s, task, nodes, python, transport) for s in found if s not in handed_in}
     missing = many_findings({str(s): p[1] for s, p in planned.items() if not isinstance(p, WorldgenError)}, python,
                             naming=transport.naming())
 
     def one(submission: Path) -> Result:
+        if submission in handed_in:
+            result = Result(path=str(submission), spawn=world.spawn, spawn_source=f"from {world.spawn_source}",
+                            robot=world.robot, robot_source=world.robot_source, checks=["package"])
+            result.findings.append(unpackaged_finding(submission))
+            if task:
+                result.skipped[task] = "the submission holds no package"
+            return result
         plan = planned[submission]
         try:
             if isinstance(plan, WorldgenError):

@@ -23,6 +23,7 @@ from pathlib import Path
 from typing import Callable, List, Sequence, Tuple, TypeVar
 
 from ..core.errors import InputError
+from ..core.findings import Finding
 from ..core.packages import MANIFEST, build_type, crawl, manifest_name
 
 WORLD_SUFFIXES = (".world", ".sdf")
@@ -40,6 +41,7 @@ class Found:
     packages: Tuple[Path, ...] = ()
     files: Tuple[Tuple[str, Path], ...] = ()
     links_out: Tuple[Path, ...] = ()   # symlinked folders in it leading out of it: not followed
+    unpackaged: Tuple[Path, ...] = ()  # its folders that look handed in but hold no package (unpackaged())
 
     @property
     def note(self) -> str:
@@ -81,6 +83,34 @@ def find_packages(folder: Path, outside: list | None = None) -> list[Path]:
     """The catkin packages under ``folder`` (a workspace: under its ``src/``), sorted by path; the walk stays in
     ``folder``, symlinked folders leading out of it going to ``outside``."""
     return sorted(crawl(folder, workspaces=True, limit=10000, outside=[] if outside is None else outside), key=str)
+
+
+# what a handed-in ROS package holds besides its package.xml (a folder holding none of these is not a submission)
+PACKAGE_SIGNS = ("setup.py", "CMakeLists.txt", "*.launch", "*.launch.py", "*_launch.py", "*.py")
+SPACES = ("build", "devel", "install", "log")   # a workspace's own folders, never a submission
+
+
+def unpackaged(folder: Path, packages: Sequence[Path]) -> list[Path]:
+    """The folders directly in ``folder`` (a class's, one folder a student) that hold no package while others
+    do, but hold what a package does (a setup.py, a CMakeLists.txt, a launch file, a node): a submission whose
+    package.xml is missing, which a crawl for packages would pass over without a word."""
+    holding = {Path(p).relative_to(folder).parts[0] for p in packages if Path(p) != folder}
+    found = []
+    for child in sorted(folder.iterdir()):
+        if child.name.startswith(".") or child.name in SPACES or child.name in holding or child.is_symlink() \
+                or not child.is_dir():
+            continue
+        if any(next(child.rglob(sign), None) is not None for sign in PACKAGE_SIGNS):
+            found.append(child)
+    return found
+
+
+def unpackaged_finding(folder: Path) -> Finding:
+    """The row of a handed-in folder that holds what a package does but no package.xml (:func:`unpackaged`)."""
+    return Finding("package", "error", "holds no package: no package.xml in it, so neither catkin nor colcon "
+                   "builds it, and roslaunch, rosrun and ros2 cannot find it", where=str(folder),
+                   fix="hand the package in with its package.xml (catkin_create_pkg, ros2 pkg create and worldgen "
+                       "scaffold write one)")
 
 
 def find_loose(folder: Path, outside: list | None = None) -> list[tuple[str, Path]]:
@@ -146,7 +176,8 @@ def search_folder(folder: str | Path) -> Found:
     outside: list = []
     packages = find_packages(folder, outside)
     if packages:
-        return Found(folder, tuple(packages), links_out=tuple(sorted(outside, key=str)))
+        return Found(folder, tuple(packages), links_out=tuple(sorted(outside, key=str)),
+                     unpackaged=tuple(unpackaged(folder, packages)))
     outside = []
     loose = tuple(find_loose(folder, outside))
     return Found(folder, (), loose, tuple(sorted(outside, key=str)))

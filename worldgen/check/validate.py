@@ -200,7 +200,7 @@ def _folder_jobs(folder: Path, options: Options, launch_info, notes) -> list[Job
     """A folder that is no package: each package found in it, else each world, model folder and spec. A package
     the folder holds once serves all of it (:func:`.discover.shared_packages`: the course's world package handed in
     beside the submissions): its launch files' ``$(find)`` look there before ``ROS_PACKAGE_PATH``."""
-    from .discover import search_folder, shared_packages
+    from .discover import search_folder, shared_packages, unpackaged_finding
 
     found = search_folder(folder)
     if notes is not None:
@@ -212,6 +212,8 @@ def _folder_jobs(folder: Path, options: Options, launch_info, notes) -> list[Job
     shared = tuple(shared_packages(found.packages))
     for pkg in found.packages:
         jobs += _package_jobs(pkg, options, shared)
+    jobs += [Job(path=str(child), pre_checks=["package"], package_only=True, findings=[unpackaged_finding(child)])
+             for child in found.unpackaged]
     for kind, path in found.files:
         try:
             jobs += _plan_path(path, str(path), options, launch_info, None)
