@@ -425,6 +425,19 @@ def test_generate_command_end_to_end(tmp_path):
     bad = runner.invoke(main, ["generate", "maze", "--seed", "1", "--loops", "2", "-o", str(tmp_path / "no")])
     assert bad.exit_code == 2 and len(bad.output.strip().splitlines()) == 1 and "--loops" in bad.output
     assert not (tmp_path / "no").exists()
+    # a cell the robot cannot turn round in is refused like a door it cannot pass (the world would fail validate);
+    # the smallest it names is the one a maze gets without --cell, and is taken
+    for robot, small in (("burger", "0.4"), ("waffle_pi", "0.6")):
+        narrow = runner.invoke(main, ["generate", "maze", "--seed", "1", "--size", "4x4", "--cell", small,
+                                      "--robot", robot, "-o", str(tmp_path / "no")])
+        assert narrow.exit_code == 2 and f"--cell {small} leaves the {robot} no room to turn" in narrow.output
+        least = narrow.output.split("give --cell at least ")[1].split(",")[0]
+        assert runner.invoke(main, ["generate", "maze", "--seed", "1", "--size", "4x4", "--cell", least, "--robot",
+                                    robot, "-o", str(tmp_path / robot)]).exit_code == 0
+        default = runner.invoke(main, ["generate", "maze", "--seed", "1", "--size", "4x4", "--robot", robot,
+                                       "-o", str(tmp_path / f"{robot}_default")])
+        assert f"--cell {least} " in (tmp_path / f"{robot}_default" / "maze_1.yaml").read_text(), default.output
+    assert not (tmp_path / "no").exists()
 
 
 # ------------------------------------------------------------------------------------------- the contact sheet

@@ -33,13 +33,19 @@ Wall = Tuple[str, int, int]   # ("v", i, j): between cells (i, j) and (i+1, j); 
 
 
 def resolve(options: MazeOptions, space: RobotSpace) -> MazeOptions:
-    """The options with the cell sized for the robot when none is given."""
+    """The options with the cell sized for the robot when none is given; InputError for a given cell the robot
+    cannot turn round in (a world that would then fail validate: spawned in a wall, touching them as it spins)."""
     from dataclasses import replace
 
-    if options.cell is not None:
-        return options
-    need = THICKNESS + 2 * space.clearance
-    return replace(options, cell=round(math.ceil(need / GRAIN - 1e-9) * GRAIN, 3))
+    from ..core.errors import InputError
+
+    least = round(math.ceil((THICKNESS + 2 * space.clearance) / GRAIN - 1e-9) * GRAIN, 3)
+    if options.cell is None:
+        return replace(options, cell=least)
+    if options.cell < least - 1e-9:
+        raise InputError(f"--cell {options.cell:g} leaves the {space.model} no room to turn in a cell",
+                         hint=f"give --cell at least {least:g}, or leave it out")
+    return options
 
 
 def _carve(cols: int, rows: int, rng: Rng) -> Tuple[Set[Wall], Cell]:
