@@ -70,6 +70,18 @@ def test_the_courses_stop_at_wall_passes(tag, course, tmp_path):
 
 
 
+def test_a_wall_met_at_an_angle_is_graded_as_the_node_measures_it(tag, course):
+    """A generated world whose spawn faces a wall obliquely: the course's node stops on the nearest beam within
+    ±10° of ahead, 0.52 m, and is graded by that front distance, not by the single beam straight ahead (0.60 m,
+    which failed the reference solution as 'short of the target')."""
+    node = course / "lab_a_stop_at_wall" / "scripts" / "stop_at_wall.py"
+    result = run(["--worlds", "clutter:1@104", str(node), "--task", "stop-at-wall", "--rate", "max",
+                  "--format", "json"])
+    assert result.exit_code == 0, result.output
+    [world] = json.loads(result.stdout)["worlds"]
+    assert world["ok"] and world["result"]["metrics"]["final_front_distance_m"] == pytest.approx(0.5, abs=0.05)
+
+
 def test_the_courses_node_and_drive_stop_at_the_same_place(tag, course):
     """The generated stop_at_wall.py on the simulated robot and `worldgen drive` run one law: from the same spawn in
     the same world they stop within 2 cm of each other (true distances from base_scan to the wall)."""

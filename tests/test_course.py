@@ -51,6 +51,22 @@ def test_every_package_checks_clean(course):
         assert problems == [], pkg
 
 
+def test_a_misspelt_node_package_is_an_error_naming_the_right_one(course, tmp_path):
+    """pkg="lab_a_stop_at_wal": roslaunch cannot start the node; not a warning to depend on the misspelt name but
+    an error naming the package meant. A package that is only not installed here (gazebo_ros) is no typo."""
+    import shutil
+
+    workspace = tmp_path / "src"
+    shutil.copytree(course, workspace / "intro_robo")
+    lab = workspace / "intro_robo" / "lab_a_stop_at_wall"
+    launch = lab / "launch" / "stop_at_wall.launch"
+    launch.write_text(launch.read_text().replace('pkg="lab_a_stop_at_wall" type=', 'pkg="lab_a_stop_at_wal" type='))
+    found = [f for f in check_package(lab, environ={}, ros_package_path=[]) if f.severity in ("error", "warning")]
+    [typo] = found
+    assert typo.severity == "error" and "no package 'lab_a_stop_at_wal' is found" in typo.message
+    assert "did you mean 'lab_a_stop_at_wall'?" in typo.message and typo.where.startswith(f"{launch}:")
+
+
 def test_launch_files_point_at_the_class_world(course):
     world = course / "class_meeting_02_custom_gazebo_world" / "worlds" / "enclosed_room.world"
     for launch in sorted(p for p in course.rglob("*.launch") if "lab_b_" not in str(p)):

@@ -19,7 +19,7 @@ from ..core.errors import WorldFileError
 from ..core.findings import Finding
 from .check_ament import check_ament
 from .build_files import check_project, cmake_text, file_text
-from ..launch.reader import PYTHON_LAUNCH_SUFFIXES, read_launch
+from ..launch.reader import PYTHON_LAUNCH_SUFFIXES, package_index, read_launch
 from ..core.packages import build_type, manifest_name
 from ..spec.model import ROBOT_MODELS
 
@@ -159,7 +159,15 @@ def _check_launch(launch: Path, package: _Package, used: set[str], add, ros_pack
     for model in sorted(models - known):
         add("launch-model", "error", f"unknown TurtleBot3 model {model!r}", launch,
             f"use one of {', '.join(sorted(known))}")
+    index = []   # the launch file's package index, made the first time a node's package needs it
     for node in info.nodes:
+        if node.package != name:
+            index = index or [package_index(launch, ros_package_path)]
+            near = _misspelt(node.package, index[0])
+            if near is not None:   # (not depended on either: the exec_depend to add is the right name's)
+                add("launch-node", "error", f"node {node.full_name}: no package {node.package!r} is found; did you "
+                    f"mean {near!r}?", f"{launch}:{node.line}", f"write pkg=\"{near}\" (or the package's own name)")
+                continue
         used.add(node.package)
         if node.package == name and kind != "catkin":
             if executables is not None and node.type not in executables:
@@ -178,6 +186,19 @@ def _check_launch(launch: Path, package: _Package, used: set[str], add, ros_pack
     used.update(re.findall(r"\$\(find\s+([^)\s]+)\)", text))
     used.update(re.findall(r"\b(?:get_package_share_directory|FindPackageShare)\(\s*(?:package\s*=\s*)?"
                            r"['\"]([A-Za-z0-9_]+)['\"]", text))
+
+
+def _misspelt(package: str, index) -> str | None:
+    """The name of a package the launch file's ``index`` (its workspace, ROS_PACKAGE_PATH) holds that ``package``,
+    found nowhere, is one or two letters off; None when it is found, or resembles none (a package not installed
+    here, gazebo_ros on a machine without ROS, is no typo)."""
+    import difflib
+
+    if index.find(package) is not None:
+        return None
+    names = sorted({index.name(folder) or folder.name for folder in index.packages()})
+    near = difflib.get_close_matches(package, names, n=1, cutoff=0.9)
+    return near[0] if near else None
 
 
 def _check_world(info, launch: Path, name: str, add) -> None:
