@@ -125,3 +125,19 @@ def test_a_submission_without_its_package_xml_is_a_failed_row(course, tmp_path):
     assert finding["check"] == "package" and "no package.xml" in finding["message"]
     assert not [r for r in doc["results"] if "notes" in r["path"]]
     assert all(r["ok"] for r in doc["results"] if "/eve" not in r["path"])
+
+
+def test_a_lab_whose_setup_py_does_not_parse_is_not_run(course, tmp_path):
+    """colcon cannot build an ament_python package whose setup.py is not Python: run grades it as a node that
+    cannot run, naming the file and line, not by running its script as if it had been built."""
+    from worldgen.bridge.grade import _check_buildable
+    from worldgen.core.errors import InputError
+
+    lab = shutil.copytree(course / LAB, tmp_path / LAB)
+    if not (lab / "setup.py").is_file():
+        pytest.skip("a catkin lab has no setup.py to build with")
+    _check_buildable(lab)   # as written by course: builds
+    (lab / "setup.py").write_text((lab / "setup.py").read_text() + "\nsetup(\n")
+    with pytest.raises(InputError, match="colcon cannot build the package") as raised:
+        _check_buildable(lab)
+    assert str(raised.value).startswith(f"{lab / 'setup.py'}:")

@@ -19,9 +19,9 @@ from pathlib import Path
 from ..check.discover import depended_on, unpackaged, unpackaged_finding
 from ..check.discover import shard as take_shard
 from ..check.report import Result
-from ..core.errors import InputError, WorldgenError
+from ..core.errors import InputError, WorldFileError, WorldgenError
 from ..core.findings import Finding
-from ..core.packages import MANIFEST, crawl, manifest_name
+from ..core.packages import MANIFEST, build_type, crawl, manifest_name
 from ..core.resources import examples_dir
 from .outcome import RunRequest
 from .preflight import blocked_result, many_findings
@@ -146,12 +146,28 @@ def grade_folder(folder: Path, world_path: Path | None, request: RunRequest, tra
 
 
 def _plan(submission: Path, task: str | None, names, python: str, transport: Transport):
-    """The submission's node file and the processes it starts, or the WorldgenError saying why it cannot run."""
+    """The submission's node file and the processes it starts, or the WorldgenError saying why it cannot run
+    (an ament_python package whose setup.py does not parse cannot be built: its node never runs under ROS)."""
     try:
+        _check_buildable(submission)
         node = node_of(submission, task, list(names))
         return node, transport.resolve_nodes([str(node)], python)
     except WorldgenError as err:
         return err
+
+
+def _check_buildable(submission: Path) -> None:
+    """InputError when ``submission`` is an ament_python package whose setup.py does not parse (colcon fails)."""
+    setup_py = submission / "setup.py"
+    if not setup_py.is_file() or build_type(submission) != "ament_python":
+        return
+    from ..pyread.setup_py import read_setup
+
+    try:
+        read_setup(setup_py)
+    except WorldFileError as err:
+        raise InputError(f"colcon cannot build the package: {err.message}", path=err.path, line=err.line,
+                         hint=err.hint) from None
 
 
 def _run(world, specs, options, transport: Transport):
