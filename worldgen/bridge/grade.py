@@ -23,6 +23,7 @@ from ..core.errors import InputError, WorldFileError, WorldgenError
 from ..core.findings import Finding
 from ..core.packages import MANIFEST, build_type, crawl, manifest_name
 from ..core.resources import examples_dir
+from ..pyread.setup_py import read_setup
 from .outcome import RunRequest
 from .preflight import blocked_result, many_findings
 from .report import result_of, task_context
@@ -161,8 +162,6 @@ def _check_buildable(submission: Path) -> None:
     setup_py = submission / "setup.py"
     if not setup_py.is_file() or build_type(submission) != "ament_python":
         return
-    from ..pyread.setup_py import read_setup
-
     try:
         read_setup(setup_py)
     except WorldFileError as err:
