@@ -47,3 +47,24 @@ def test_a_namespace_typo_names_where_the_robot_is(tag):
     doc = json.loads(done.stdout)
     said = [f for f in doc["findings"] if "no robot lives in /tmb3_1" in f["message"]]
     assert done.returncode == 1 and len(said) == 1 and "the robots take /cmd_vel" in said[0]["message"]
+
+
+def test_a_velocity_topic_typo_names_the_topic_the_node_used(tag):
+    """A node whose commands go to /cmdvel (remapped here as a misspelt name would): a finding names that topic
+    and the robot's own, beside "no message on /cmd_vel"; none when the robot is commanded."""
+    import json
+    import os
+    import subprocess
+    import sys
+
+    from bridgetools import NODES, REPO, ROOM
+
+    def findings(*node_args):
+        done = subprocess.run([sys.executable, "-m", "worldgen", "run", str(ROOM), str(NODES / "drive_into_wall.py"),
+                               *node_args, "--duration", "2", "--rate", "max", "--format", "json"],
+                              env=dict(os.environ, PYTHONPATH=str(REPO)), capture_output=True, text=True, timeout=120)
+        return [f["message"] for f in json.loads(done.stdout)["findings"]]
+
+    said = [m for m in findings("cmd_vel:=/cmdvel") if "/cmdvel" in m]
+    assert said == ["a node publishes geometry_msgs/Twist on /cmdvel, which no robot takes: the robots take /cmd_vel"]
+    assert not [m for m in findings() if "which no robot takes" in m]

@@ -200,21 +200,38 @@ class Bridge(Wire):
         """The trace file: the graded robot's rows at the top level (what :mod:`.metrics` reads), every robot's
         under ``robots``."""
         graded = self.graded.result()
+        commanded = bool(graded.get("cmd_vel_messages"))
         return dict(graded, person=self.person.path if self.person else [], robot=self.config.get("robot") or "burger",
-                    robots=[t.io.result() for t in self.robots] + self.removed, findings=self.stray_commands())
+                    robots=[t.io.result() for t in self.robots] + self.removed,
+                    findings=self.stray_commands(commanded))
 
-    def stray_commands(self) -> list[dict]:
-        """A finding per ``cmd_vel`` some node publishes where no robot lives (a typo in ``__ns:=``, say)."""
+    def stray_commands(self, commanded: bool = True) -> list[dict]:
+        """A finding per ``cmd_vel`` some node publishes where no robot lives (a typo in ``__ns:=``, say), and,
+        when the robot was never commanded, per velocity command published on a topic no robot takes (a typo in
+        the topic's name: ``/cmdvel``)."""
         try:
-            published = [name for name, _ in self.rospy.get_published_topics()]
+            published = sorted(self.rospy.get_published_topics())
         except Exception:   # noqa: BLE001  (no master answer: nothing to say)
             return []
         taken = sorted(join(t.ns, "cmd_vel") for t in self.robots)
-        return [{"check": "node", "severity": "error",
-                 "message": f"a node publishes {name}, but no robot lives in {name.rsplit('/', 1)[0] or '/'}: the "
-                            f"robots take {', '.join(taken)}",
-                 "fix": "check the node's namespace (__ns:=) and its cmd_vel remapping"}
-                for name in sorted(published) if name.endswith("/cmd_vel") and name not in taken]
+        found = []
+        for name, kind in published:
+            if name in taken:
+                continue
+            if name.endswith("/cmd_vel"):
+                found.append({"check": "node", "severity": "error",
+                              "message": f"a node publishes {name}, but no robot lives in "
+                                         f"{name.rsplit('/', 1)[0] or '/'}: the robots take {', '.join(taken)}",
+                              "fix": "check the node's namespace (__ns:=) and its cmd_vel remapping"})
+            elif not commanded and kind in VELOCITY_TYPES:
+                found.append({"check": "node", "severity": "error",
+                              "message": f"a node publishes {kind} on {name}, which no robot takes: the robots "
+                                         f"take {', '.join(taken)}",
+                              "fix": f"publish on {taken[0]} (is the topic's name misspelt?)"})
+        return found
+
+
+VELOCITY_TYPES = ("geometry_msgs/Twist", "geometry_msgs/TwistStamped")   # what a robot's cmd_vel takes
 
 
 def wait_for_start(rospy, bridge: Bridge, file: str) -> None:
