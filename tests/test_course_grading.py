@@ -141,3 +141,17 @@ def test_a_lab_whose_setup_py_does_not_parse_is_not_run(course, tmp_path):
     with pytest.raises(InputError, match="colcon cannot build the package") as raised:
         _check_buildable(lab)
     assert str(raised.value).startswith(f"{lab / 'setup.py'}:")
+
+
+def test_a_misspelt_world_package_is_named_with_the_one_meant(course, tmp_path):
+    """$(find class_meeting_02_custom_gazebo_wrold): the world cannot be found, and the error names the package
+    beside it that was meant, not 'put …_wrold in the workspace'."""
+    folder = hand_in(course, tmp_path / "submissions", students=("alice",))
+    shutil.copytree(course / WORLD_PACKAGE, folder / WORLD_PACKAGE)
+    typo = WORLD_PACKAGE.replace("world", "wrold")
+    [launch] = [p for p in (folder / "alice" / LAB / "launch").iterdir() if WORLD_PACKAGE in p.read_text()]
+    launch.write_text(launch.read_text().replace(WORLD_PACKAGE, typo))
+    code, doc = grade(folder)
+    [finding] = [f for r in doc["results"] for f in r["findings"] if typo in f["message"]]
+    assert code == 1 and finding["severity"] == "error" and f"did you mean {WORLD_PACKAGE!r}?" in finding["message"]
+    assert WORLD_PACKAGE in finding["fix"] and typo not in finding["fix"]

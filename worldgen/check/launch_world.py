@@ -14,7 +14,7 @@ from pathlib import Path
 from typing import List
 
 from ..core.findings import Finding
-from ..launch.reader import is_python_launch
+from ..launch.reader import is_python_launch, package_index
 from ..packages.course_names import SHARED_WORLD_PACKAGES
 BUILD_FIX = "build it (worldgen build SPEC --package DIR) or fix the world's path in the launch file"
 PLAIN_FIX = ("make the world it passes to Gazebo (world_name; world or gz_args in a launch.py) an existing world file "
@@ -22,10 +22,12 @@ PLAIN_FIX = ("make the world it passes to Gazebo (world_name; world or gz_args i
              "--launch THIS_FILE")
 
 
-def world_not_found(info, path: Path, findings: List[Finding], graded: bool) -> List[Finding]:
+def world_not_found(info, path: Path, findings: List[Finding], graded: bool, search=None) -> List[Finding]:
     """``findings`` (the read's) with the error of a world that cannot be found: when a package that is nowhere
-    is the cause (``info.package``), the read's findings of that package are folded into it. ``graded``: the
-    launch file is in a folder given to grade, whose packages held once were searched too."""
+    is the cause (``info.package``), the read's findings of that package are folded into it, and a package that
+    is there under a name a letter or two off is named (``search``: where ``$(find)`` looked after the launch
+    file's workspace, None for ROS_PACKAGE_PATH). ``graded``: the launch file is in a folder given to grade,
+    whose packages held once were searched too."""
     ref = info.world_ref or "(none)"
     package = info.package
     missing = f"package {package!r} not found" if package else None
@@ -41,8 +43,21 @@ def world_not_found(info, path: Path, findings: List[Finding], graded: bool) -> 
         (["AMENT_PREFIX_PATH"] if ros2 else [])
     message = (f"the world this launch file starts cannot be found: {ref} (the package {package} is not in "
                f"{', '.join(looked[:-1])} or {looked[-1]})")
+    near = _near(package, path, search)
+    fix = (f"write $(find {near}) (the package {near} is there)" if near else _where_to_put(package, graded, ros2))
     return [f for f in findings if f not in same] + [
-        Finding("launch", "error", message, where=same[0].where, fix=_where_to_put(package, graded, ros2))]
+        Finding("launch", "error", message + (f"; did you mean {near!r}?" if near else ""), where=same[0].where,
+                fix=fix)]
+
+
+def _near(package: str, path: Path, search) -> str | None:
+    """A package the launch file's index holds whose name is a letter or two off ``package``'s (a typo)."""
+    import difflib
+
+    index = package_index(path, search)
+    names = sorted({index.name(folder) or folder.name for folder in index.packages()})
+    found = difflib.get_close_matches(package, names, n=1, cutoff=0.9)
+    return found[0] if found else None
 
 
 def _where_to_put(package: str, graded: bool, ros2: bool) -> str:

@@ -269,10 +269,10 @@ def _launch_path_job(path: Path, display: str, shared: tuple[Path, ...] | None =
     except WorldFileError as err:
         return Job(path=display, pre_checks=["launch"], findings=[
             _error_finding("launch", err, path, "fix the launch file so that roslaunch can read it")])
-    return _launch_job(path, info, display, graded=shared is not None)
+    return _launch_job(path, info, display, graded=shared is not None, search=_search_path(shared))
 
 
-def _launch_job(path: Path, info, display: str, graded: bool = False) -> Job:
+def _launch_job(path: Path, info, display: str, graded: bool = False, search=None) -> Job:
     from ..launch.reader import nothing_to_simulate
 
     job = Job(path=display, pre_checks=["launch"], findings=list(info.findings))
@@ -284,7 +284,7 @@ def _launch_job(path: Path, info, display: str, graded: bool = False) -> Job:
     if info.world_path is not None and Path(info.world_path).is_file():
         job.world = Path(info.world_path)
     else:   # one error, the missing package's findings folded into it
-        job.findings = world_not_found(info, path, job.findings, graded)
+        job.findings = world_not_found(info, path, job.findings, graded, search)
     _take_launch_pose(job, info, path)
     return job
 

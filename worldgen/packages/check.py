@@ -183,9 +183,14 @@ def _check_launch(launch: Path, package: _Package, used: set[str], add, ros_pack
                 add("launch-node", "error", f"node {node.full_name}: {exe} is not executable",
                     f"{launch}:{node.line}", f"chmod +x {exe}")
     text = file_text(launch)
-    used.update(re.findall(r"\$\(find\s+([^)\s]+)\)", text))
-    used.update(re.findall(r"\b(?:get_package_share_directory|FindPackageShare)\(\s*(?:package\s*=\s*)?"
-                           r"['\"]([A-Za-z0-9_]+)['\"]", text))
+    named = set(re.findall(r"\$\(find\s+([^)\s]+)\)", text))
+    named.update(re.findall(r"\b(?:get_package_share_directory|FindPackageShare)\(\s*(?:package\s*=\s*)?"
+                            r"['\"]([A-Za-z0-9_]+)['\"]", text))
+    for other in sorted(named - {name}):   # a misspelt one is said where it is used, not as a depend to add
+        index = index or [package_index(launch, ros_package_path)]
+        if _misspelt(other, index[0]) is not None:
+            named.discard(other)
+    used.update(named)
 
 
 def _misspelt(package: str, index) -> str | None:
