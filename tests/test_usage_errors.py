@@ -40,7 +40,10 @@ def test_a_misspelt_command_is_answered_with_the_nearest_one():
     result = CliRunner().invoke(main, ["valdate", "x.world"])
     assert result.exit_code == 2 and "No such command 'valdate'. Did you mean 'validate'?" in result.stderr
     far = CliRunner().invoke(main, ["zzz"])
-    assert far.exit_code == 2 and "Did you mean" not in far.stderr
+    assert far.exit_code == 2 and "Did you mean" not in far.stderr and "Choose one of: build, course," in far.stderr
+    kind = CliRunner().invoke(main, ["generate", "foo"])
+    assert kind.exit_code == 2 and "Choose one of: arena, clutter, maze, rooms, track." in kind.stderr
+    assert "Did you mean 'maze'?" in CliRunner().invoke(main, ["generate", "mazes"]).stderr
 
 
 def test_usage_error_of_the_installed_command():

@@ -63,7 +63,23 @@ COMMAND_MODULES = {"new": "new", "build": "build", "generate": "generate", "prev
                    "sim": "sim", "run": "run", "doctor": "doctor"}
 
 
-class _Group(click.Group):
+class SuggestingGroup(click.Group):
+    """A group that answers a command it does not have with the nearest one it has (``valdate``: did you mean
+    validate?), or else the list of them."""
+
+    def resolve_command(self, ctx: click.Context, args: list[str]):
+        name = args[0] if args else ""
+        if name and not name.startswith("-") and self.get_command(ctx, name) is None:
+            import difflib
+
+            names = self.list_commands(ctx)
+            near = difflib.get_close_matches(name, names, n=1)
+            ctx.fail(f"No such command {name!r}. " + (f"Did you mean {near[0]!r}?" if near else
+                                                      f"Choose one of: {', '.join(names)}."))
+        return super().resolve_command(ctx, args)
+
+
+class _Group(SuggestingGroup):
     """The command group: domain errors and click's usage errors (a bad option, a missing argument, an unknown
     command: click would print its four-line usage block) both become one line on stderr and exit code 2."""
 
@@ -75,17 +91,6 @@ class _Group(click.Group):
             for command in importlib.import_module(f"{__name__}.{COMMAND_MODULES[name]}").COMMANDS:
                 self.add_command(command)
         return self.commands.get(name)
-
-    def resolve_command(self, ctx: click.Context, args: list[str]):
-        """click's, with the nearest command suggested for a misspelt one (``valdate``: did you mean validate?)."""
-        name = args[0] if args else ""
-        if name and not name.startswith("-") and self.get_command(ctx, name) is None:
-            import difflib
-
-            near = difflib.get_close_matches(name, self.list_commands(ctx), n=1)
-            if near:
-                ctx.fail(f"No such command {name!r}. Did you mean {near[0]!r}?")
-        return super().resolve_command(ctx, args)
 
     def main(self, *args, **kwargs):
         _lenient_streams()

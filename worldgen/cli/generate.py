@@ -12,6 +12,7 @@ import click
 
 from ..generate.options import FLAGS, KINDS, MAX_COUNT
 from ..generate.rng import MAX_SEED
+from . import SuggestingGroup
 
 HELP = {
     "maze": "A maze on a grid of cells the robot can turn in: perfect or with loops, closed or with an entrance "
@@ -78,7 +79,7 @@ def _shown(value) -> str:
     return f"{value:g}" if isinstance(value, float) else str(value)
 
 
-@click.group("generate")
+@click.group("generate", cls=SuggestingGroup)
 def generate_group() -> None:
     """Seeded worlds written as floorplan specs: KIND_SEED.yaml in the output folder, each closed, with a clear
     spawn and every room reachable through openings the robot fits, for the robot given (the Waffle Pi unless
