@@ -12,9 +12,16 @@ The fast loop, under a minute on that machine: ``python -m pytest -m "not ros an
 from __future__ import annotations
 
 import fnmatch
+import signal
 from pathlib import Path
 
 import pytest
+
+# A suite started in the background (`nohup pytest … &` from a script) has SIGINT ignored, and every command a test
+# starts would inherit that: the tests that stop `worldgen sim` or `run` as Ctrl-C does would wait on it, and leave
+# it running. Here SIGINT is Python's own again, so that children start with it at its default.
+if signal.getsignal(signal.SIGINT) == signal.SIG_IGN:
+    signal.signal(signal.SIGINT, signal.default_int_handler)
 
 from browserpage import chromium  # noqa: F401  (one headless browser for every test module)
 
