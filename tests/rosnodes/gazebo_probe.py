@@ -177,14 +177,16 @@ def spawn_robot(urdf_file, x, y, ns):
     twist = Twist()
     twist.linear.x = -0.1   # backing away from us
     cmd.publish(twist)
+    went = rospy.Time.now().to_sec()
     sim_sleep(2.0)
     cmd.publish(Twist())
+    drove = rospy.Time.now().to_sec() - went   # 2 s, or more when this process was kept waiting for a CPU
     sim_sleep(0.5)
     end = next_message(f"{ns}/odom", Odometry).pose.pose.position
     states = rospy.wait_for_message("/gazebo/model_states", ModelStates, timeout=20)
     deleted = service("/gazebo/delete_model", DeleteModel)("second_robot")
     return {"spawned": [answer.success, answer.status_message], "before": before, "seen": seen,
-            "start": [start.x, start.y], "end": [end.x, end.y], "names": list(states.name),
+            "start": [start.x, start.y], "end": [end.x, end.y], "drove_s": drove, "names": list(states.name),
             "deleted": [deleted.success, deleted.status_message], "after": front()}
 
 
