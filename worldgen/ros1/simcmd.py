@@ -31,49 +31,58 @@ def sim(world: World, *, rate: float, duration: float | None, no_hit: str,
     cameras = check_cameras(world)   # InputError naming the packages when a camera cannot be drawn
     uri = os.environ.get("ROS_MASTER_URI") or DEFAULT_URI
     with tempfile.TemporaryDirectory(prefix="worldgen_sim_") as tmp, Supervisor() as supervisor:
-        env = dict(os.environ)
-        if master_answers(uri):
-            say(f"worldgen sim: joined the ROS master at {uri}")
-        else:
-            port = urlparse(uri).port or 11311
-            _, uri = start_master(supervisor, port, env)
-            say(f"worldgen sim: started a ROS master at {uri} (stopped on exit)")
-        env["ROS_MASTER_URI"] = uri
-        for name, value in world.params.items():   # what roslaunch of the launch file would set
-            set_param(uri, name, value)
-        if world.params:
-            say(f"worldgen sim: set the launch file's {len(world.params)} parameter(s) ({', '.join(world.params)})")
-        generated = gazebo_msgs_path()
-        if generated is not None:
-            env["PYTHONPATH"] = os.pathsep.join(p for p in (generated, env.get("PYTHONPATH")) if p)
-            say(f"worldgen sim: this system has no gazebo_msgs; for nodes that import it: "
-                f"export PYTHONPATH={generated}:$PYTHONPATH")
-        config = write_config(Path(tmp), world, rate=rate, duration=duration, no_hit=no_hit, trace=None,
-                              set_sim_time=True)
-        root = str(Path(__file__).resolve().parents[2])
-        env["PYTHONPATH"] = os.pathsep.join(p for p in (root, env.get("PYTHONPATH")) if p)
-        child = supervisor.start("simulator", [sys.executable, "-m", "worldgen.ros1", str(config)], env,
-                                 show_errors=True)
-        x, y, yaw = world.spawn
-        robots = [f"{r['ns']}: {r['robot']} at ({r['spawn'][0]:g}, {r['spawn'][1]:g}, {r['spawn'][2]:g})"
-                  for r in world.robots] or [f"{world.robot} at ({x:g}, {y:g}, {yaw:g})"]
-        say(f"worldgen sim: {'; '.join(robots)} in {world.path}, "
-            f"{'as fast as it goes' if rate <= 0 else f'{rate:g}x real time'}; publishing {TOPICS}"
-            f"{'; ' + ' '.join(cameras) + ' while subscribed' if cameras else ''}"
-            f"{' in each namespace' if world.robots else ''}. Ctrl-C stops.")
         try:
-            while child.running:
-                time.sleep(0.1)
-        except KeyboardInterrupt:
+            return _serve(world, supervisor, Path(tmp), uri, cameras, say,
+                          {"rate": rate, "duration": duration, "no_hit": no_hit})
+        except KeyboardInterrupt:   # Ctrl-C, SIGTERM or SIGHUP at any moment once started: a stop asked for
             import signal
 
             signal.signal(signal.SIGINT, signal.SIG_IGN)   # a second Ctrl-C must not cut the stopping short
             say("worldgen sim: stopping")
             return 0
-        code = child.proc.returncode
-        if code not in (0, None) and code > 0:
-            return code
-        return 0
+
+
+def _serve(world: World, supervisor: Supervisor, tmp: Path, uri: str, cameras: list, say: Callable[[str], None],
+           settings: dict) -> int:
+    """The master (joined or started), the launch file's parameters and the simulator node (``settings``: its
+    ``rate``, ``duration`` and ``no_hit``), until the node ends (its exit code); a stop asked for interrupts it
+    anywhere (KeyboardInterrupt: :func:`sim` says so, exit 0)."""
+    env = dict(os.environ)
+    if master_answers(uri):
+        say(f"worldgen sim: joined the ROS master at {uri}")
+    else:
+        port = urlparse(uri).port or 11311
+        _, uri = start_master(supervisor, port, env)
+        say(f"worldgen sim: started a ROS master at {uri} (stopped on exit)")
+    env["ROS_MASTER_URI"] = uri
+    for name, value in world.params.items():   # what roslaunch of the launch file would set
+        set_param(uri, name, value)
+    if world.params:
+        say(f"worldgen sim: set the launch file's {len(world.params)} parameter(s) ({', '.join(world.params)})")
+    generated = gazebo_msgs_path()
+    if generated is not None:
+        env["PYTHONPATH"] = os.pathsep.join(p for p in (generated, env.get("PYTHONPATH")) if p)
+        say(f"worldgen sim: this system has no gazebo_msgs; for nodes that import it: "
+            f"export PYTHONPATH={generated}:$PYTHONPATH")
+    config = write_config(tmp, world, **settings, trace=None, set_sim_time=True)
+    rate = settings["rate"]
+    root = str(Path(__file__).resolve().parents[2])
+    env["PYTHONPATH"] = os.pathsep.join(p for p in (root, env.get("PYTHONPATH")) if p)
+    child = supervisor.start("simulator", [sys.executable, "-m", "worldgen.ros1", str(config)], env,
+                             show_errors=True)
+    x, y, yaw = world.spawn
+    robots = [f"{r['ns']}: {r['robot']} at ({r['spawn'][0]:g}, {r['spawn'][1]:g}, {r['spawn'][2]:g})"
+              for r in world.robots] or [f"{world.robot} at ({x:g}, {y:g}, {yaw:g})"]
+    say(f"worldgen sim: {'; '.join(robots)} in {world.path}, "
+        f"{'as fast as it goes' if rate <= 0 else f'{rate:g}x real time'}; publishing {TOPICS}"
+        f"{'; ' + ' '.join(cameras) + ' while subscribed' if cameras else ''}"
+        f"{' in each namespace' if world.robots else ''}. Ctrl-C stops.")
+    while child.running:
+        time.sleep(0.1)
+    code = child.proc.returncode
+    if code not in (0, None) and code > 0:
+        return code
+    return 0
 
 
 def check_cameras(world: World) -> list[str]:

@@ -38,21 +38,24 @@ def sim(world: World, *, stack: str, cmd_vel: str | None, rate: float, duration:
         say("worldgen sim: warning: ROS_AUTOMATIC_DISCOVERY_RANGE=OFF: nodes in this shell reach no other "
             "process, the simulator included; unset it or set LOCALHOST")
     with tempfile.TemporaryDirectory(prefix="worldgen_sim2_") as tmp, Supervisor() as supervisor:
-        config = write_config(Path(tmp), world, rate=rate, duration=duration, no_hit=no_hit, trace=None, stack=stack,
-                              domain=domain, discovery={"range": discovery.range, "peers": list(discovery.static_peers)}, cmd_vel=cmd_vel, start_file=None, expect=0)
-        root = str(Path(__file__).resolve().parents[2])
-        env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in (root, os.environ.get("PYTHONPATH")) if p))
-        child = supervisor.start("simulator", [sys.executable, "-m", "worldgen.ros2", str(config)], env,
-                                 show_errors=True)
-        table = topics(stack)
-        names = " ".join(t.full_name() for t in table.values() if t.direction == "out")
-        x, y, yaw = world.spawn
-        say(f"worldgen sim: {world.robot} at ({x:g}, {y:g}, {yaw:g}) in {world.path} as ROS 2 {stack} on "
-            f"ROS_DOMAIN_ID={domain}, {'as fast as it goes' if rate <= 0 else f'{rate:g}x real time'}; publishing "
-            f"{names}; subscribes /cmd_vel ({table['cmd_vel'].type}). Ctrl-C stops.")
-        say(f"worldgen sim: in another shell with ROS 2 {stack}: ROS_DOMAIN_ID={domain} ros2 topic list, or "
-            f"python3 your_node.py --ros-args -p use_sim_time:=true")
-        try:
+        try:   # a stop asked for (Ctrl-C, SIGTERM, SIGHUP) at any moment once started: exit 0
+            config = write_config(Path(tmp), world, rate=rate, duration=duration, no_hit=no_hit, trace=None,
+                                  stack=stack, domain=domain, cmd_vel=cmd_vel, start_file=None, expect=0,
+                                  discovery={"range": discovery.range, "peers": list(discovery.static_peers)})
+            root = str(Path(__file__).resolve().parents[2])
+            env = dict(os.environ,
+                       PYTHONPATH=os.pathsep.join(p for p in (root, os.environ.get("PYTHONPATH")) if p))
+            child = supervisor.start("simulator", [sys.executable, "-m", "worldgen.ros2", str(config)], env,
+                                     show_errors=True)
+            table = topics(stack)
+            names = " ".join(t.full_name() for t in table.values() if t.direction == "out")
+            x, y, yaw = world.spawn
+            pace = "as fast as it goes" if rate <= 0 else f"{rate:g}x real time"
+            say(f"worldgen sim: {world.robot} at ({x:g}, {y:g}, {yaw:g}) in {world.path} as ROS 2 {stack} on "
+                f"ROS_DOMAIN_ID={domain}, {pace}; publishing {names}; subscribes /cmd_vel "
+                f"({table['cmd_vel'].type}). Ctrl-C stops.")
+            say(f"worldgen sim: in another shell with ROS 2 {stack}: ROS_DOMAIN_ID={domain} ros2 topic list, or "
+                f"python3 your_node.py --ros-args -p use_sim_time:=true")
             while child.running:
                 time.sleep(0.1)
         except KeyboardInterrupt:
