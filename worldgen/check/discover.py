@@ -86,7 +86,7 @@ def find_packages(folder: Path, outside: list | None = None) -> list[Path]:
 
 
 # what a handed-in ROS package holds besides its package.xml (a folder holding none of these is not a submission)
-PACKAGE_SIGNS = ("setup.py", "CMakeLists.txt", "*.launch", "*.launch.py", "*_launch.py", "*.py")
+PACKAGE_SIGNS = ("CMakeLists.txt", "*.launch", "*.py")   # (*.py: a node, setup.py, a launch.py)
 SPACES = ("build", "devel", "install", "log")   # a workspace's own folders, never a submission
 
 

@@ -43,21 +43,12 @@ def world_not_found(info, path: Path, findings: List[Finding], graded: bool, sea
         (["AMENT_PREFIX_PATH"] if ros2 else [])
     message = (f"the world this launch file starts cannot be found: {ref} (the package {package} is not in "
                f"{', '.join(looked[:-1])} or {looked[-1]})")
-    near = _near(package, path, search)
+    near = package_index(path, search).misspelt(package)
     fix = (f"write $(find {near}) (the package {near} is there)" if near else _where_to_put(package, graded, ros2))
     return [f for f in findings if f not in same] + [
         Finding("launch", "error", message + (f"; did you mean {near!r}?" if near else ""), where=same[0].where,
                 fix=fix)]
 
-
-def _near(package: str, path: Path, search) -> str | None:
-    """A package the launch file's index holds whose name is a letter or two off ``package``'s (a typo)."""
-    import difflib
-
-    index = package_index(path, search)
-    names = sorted({index.name(folder) or folder.name for folder in index.packages()})
-    found = difflib.get_close_matches(package, names, n=1, cutoff=0.9)
-    return found[0] if found else None
 
 
 def _where_to_put(package: str, graded: bool, ros2: bool) -> str:

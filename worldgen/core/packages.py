@@ -189,6 +189,18 @@ class PackageIndex:
                  if self.name(folder) == name), None)
         return self._found[name]
 
+    def misspelt(self, name: str) -> str | None:
+        """The name of a package held here that ``name``, held nowhere, is a letter or two off (a typo in a
+        launch file's ``pkg=`` or ``$(find)``); None when ``name`` is found, or resembles none (a package only not
+        installed here, gazebo_ros on a machine without ROS, is no typo)."""
+        import difflib
+
+        if self.find(name) is not None:
+            return None
+        names = sorted({self.name(folder) or folder.name for folder in self.packages()})
+        near = difflib.get_close_matches(name, names, n=1, cutoff=0.9)
+        return near[0] if near else None
+
     def model_paths(self) -> list[Path]:
         """Every package's Gazebo model path exports (:func:`gazebo_model_paths`), in crawl order, each once."""
         found: list[Path] = []

@@ -159,11 +159,10 @@ def _check_launch(launch: Path, package: _Package, used: set[str], add, ros_pack
     for model in sorted(models - known):
         add("launch-model", "error", f"unknown TurtleBot3 model {model!r}", launch,
             f"use one of {', '.join(sorted(known))}")
-    index = []   # the launch file's package index, made the first time a node's package needs it
+    index = package_index(launch, ros_package_path)   # (crawled only when a name is looked up)
     for node in info.nodes:
         if node.package != name:
-            index = index or [package_index(launch, ros_package_path)]
-            near = _misspelt(node.package, index[0])
+            near = index.misspelt(node.package)
             if near is not None:   # (not depended on either: the exec_depend to add is the right name's)
                 add("launch-node", "error", f"node {node.full_name}: no package {node.package!r} is found; did you "
                     f"mean {near!r}?", f"{launch}:{node.line}", f"write pkg=\"{near}\" (or the package's own name)")
@@ -186,24 +185,8 @@ def _check_launch(launch: Path, package: _Package, used: set[str], add, ros_pack
     named = set(re.findall(r"\$\(find\s+([^)\s]+)\)", text))
     named.update(re.findall(r"\b(?:get_package_share_directory|FindPackageShare)\(\s*(?:package\s*=\s*)?"
                             r"['\"]([A-Za-z0-9_]+)['\"]", text))
-    for other in sorted(named - {name}):   # a misspelt one is said where it is used, not as a depend to add
-        index = index or [package_index(launch, ros_package_path)]
-        if _misspelt(other, index[0]) is not None:
-            named.discard(other)
-    used.update(named)
-
-
-def _misspelt(package: str, index) -> str | None:
-    """The name of a package the launch file's ``index`` (its workspace, ROS_PACKAGE_PATH) holds that ``package``,
-    found nowhere, is one or two letters off; None when it is found, or resembles none (a package not installed
-    here, gazebo_ros on a machine without ROS, is no typo)."""
-    import difflib
-
-    if index.find(package) is not None:
-        return None
-    names = sorted({index.name(folder) or folder.name for folder in index.packages()})
-    near = difflib.get_close_matches(package, names, n=1, cutoff=0.9)
-    return near[0] if near else None
+    # a misspelt one is said where it is used (the launch file's row), not as a depend to add
+    used.update(other for other in named if other == name or index.misspelt(other) is None)
 
 
 def _check_world(info, launch: Path, name: str, add) -> None:
