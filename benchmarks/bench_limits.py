@@ -293,13 +293,18 @@ def _plain_big_yaml(tmp: Path) -> Path:
                   f"lines:\n  - name: t\n    points: [{points}]\n")
 
 
+def _manifest(folder: Path) -> None:
+    """The least package.xml for a package named after ``folder``."""
+    (folder / "package.xml").write_text(
+        f"<package format='2'><name>{folder.name}</name><version>0.0.1</version><description>d</description>"
+        "<maintainer email='a@b.c'>a</maintainer><license>BSD</license></package>\n")
+
+
 def _link_to_root(tmp: Path) -> List[str]:
     """A class folder where one submission holds a link to / (the walk once took 46 s over 1 873 files)."""
     sub = tmp / "submissions" / "ana" / "lab"
     sub.mkdir(parents=True)
-    (sub / "package.xml").write_text("<package format='2'><name>lab</name><version>0.0.1</version><description>d"
-                                     "</description><maintainer email='a@b.c'>a</maintainer><license>BSD</license>"
-                                     "</package>\n")
+    _manifest(sub)
     os.symlink("/", tmp / "submissions" / "ana" / "root")
     return _validate(tmp / "submissions")
 
@@ -328,9 +333,7 @@ def _symlink_loops(tmp: Path) -> List[str]:
     root = tmp / "class"
     for student in ("ana/src/a", "ben/catkin_ws/src/b"):
         (root / student).mkdir(parents=True)
-        (root / student / "package.xml").write_text(
-            f"<package format='2'><name>{Path(student).name}</name><version>0.0.1</version><description>d"
-            "</description><maintainer email='a@b.c'>a</maintainer><license>BSD</license></package>\n")
+        _manifest(root / student)
     (root / "ana" / "src" / "up").symlink_to(root)
     (root / "ben" / "catkin_ws" / "src" / "b" / "back").symlink_to(root / "ben")
     return _validate(root)
