@@ -164,6 +164,65 @@ def test_validate_starts_its_server_before_anything_runs_threads():
     assert proc.stdout.strip() == "[] 1", proc.stderr
 
 
+ROOM = ("<sdf version='1.6'><world name='w'><model name='room'><static>1</static>"
+        + "".join(f"<link name='w{i}'><pose>{x} {y} 0.25 0 0 {yaw}</pose><collision name='c'><geometry><box>"
+                  "<size>4 0.1 0.5</size></box></geometry></collision></link>"
+                  for i, (x, y, yaw) in enumerate([(0, 2, 0), (0, -2, 0), (2, 0, 1.5708), (-2, 0, 1.5708)]))
+        + "</model></world></sdf>")
+
+
+def test_the_program_forks_validates_server_before_click_and_the_checks_load(tmp_path):
+    """``worldgen validate`` (the program, not the library) forks its simulations' server first of all, before
+    click, numpy or the checks are imported, and the command simulates through that one server: the same report
+    as a validate that starts its own."""
+    world = tmp_path / "room.world"
+    world.write_text(ROOM)
+    script = tmp_path / "program.py"
+    script.write_text(textwrap.dedent("""
+        import contextlib, json, sys
+        import worldgen.sim.forkserver as forkserver
+
+        real, seen = forkserver.forking, []
+
+        @contextlib.contextmanager
+        def forking(preload):
+            seen.append({"loaded": sorted(m for m in ("click", "numpy", "lxml", "worldgen.check.checks")
+                                          if m in sys.modules), "threads": forkserver.thread_count()})
+            with real(preload) as server:
+                yield server
+            print(json.dumps(seen), file=sys.stderr)
+
+        forkserver.forking = forking
+        sys.argv = ["worldgen", "validate", sys.argv[1], "--format", "json"]
+        from worldgen.__main__ import run
+        run()
+    """))
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join((str(REPO), str(tmp_path))))
+    proc = subprocess.run([sys.executable, str(script), str(world)], capture_output=True, text=True, env=env,
+                          timeout=120)
+    assert proc.returncode == 0, proc.stderr
+    assert json.loads(proc.stderr.strip().splitlines()[-1]) == [{"loaded": [], "threads": 1}]
+    library = subprocess.run([sys.executable, "-c", "from worldgen.cli import run; run()", "validate", str(world),
+                              "--format", "json"], capture_output=True, text=True, env=env, timeout=120)
+    assert library.returncode == 0 and json.loads(library.stdout) == json.loads(proc.stdout)
+
+
+@pytest.mark.parametrize("args", [["validate", "--no-such-option"], ["validate", "missing.world"]],
+                         ids=["usage-error", "missing-file"])
+def test_the_programs_early_server_ends_with_the_command(tmp_path, args):
+    """A server forked for a validate that then simulates nothing (a usage error, no file to read): the command's
+    one line and exit status 2, and neither a process nor the server's folder left behind."""
+    from bridgetools import no_leftovers
+
+    marker = f"WORLDGEN_EARLY_TEST={tmp_path.name}"
+    env = dict(os.environ, PYTHONPATH=str(REPO), TMPDIR=str(tmp_path), WORLDGEN_EARLY_TEST=tmp_path.name)
+    proc = subprocess.run([sys.executable, "-m", "worldgen", *args], capture_output=True, text=True, env=env,
+                          cwd=tmp_path, timeout=120)
+    assert proc.returncode == 2 and proc.stderr.count("\n") == 1, proc.stderr
+    no_leftovers(marker)
+    assert sorted(p.name for p in tmp_path.iterdir() if p.name.startswith("worldgen-forks-")) == []
+
+
 def test_a_crash_in_the_forked_simulation_is_a_finding(tmp_path):
     """The whole command: the simulation, forked from validate's server, aborts; the world still gets its
     geometric checks and one error naming the stage, never a traceback."""
@@ -171,12 +230,7 @@ def test_a_crash_in_the_forked_simulation_is_a_finding(tmp_path):
         "import os\n\ndef simulate(stage_file=None, **kwargs):\n"
         "    open(stage_file, 'w').write('spinning in place')\n    os.abort()\n")
     world = tmp_path / "room.world"
-    world.write_text(
-        "<sdf version='1.6'><world name='w'><model name='room'><static>1</static>"
-        + "".join(f"<link name='w{i}'><pose>{x} {y} 0.25 0 0 {yaw}</pose><collision name='c'><geometry><box>"
-                  "<size>4 0.1 0.5</size></box></geometry></collision></link>"
-                  for i, (x, y, yaw) in enumerate([(0, 2, 0), (0, -2, 0), (2, 0, 1.5708), (-2, 0, 1.5708)]))
-        + "</model></world></sdf>")
+    world.write_text(ROOM)
     script = tmp_path / "crash_validate.py"
     script.write_text(textwrap.dedent("""
         import contextlib, sys

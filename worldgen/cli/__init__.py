@@ -13,6 +13,7 @@ import importlib
 import os
 import sys
 import threading
+from typing import NoReturn
 
 import click
 
@@ -127,16 +128,25 @@ def main() -> None:
 
 def run() -> None:
     """The program (``worldgen``, ``python -m worldgen``): :func:`main`, then out without the interpreter's
-    teardown. Once the command has returned, its files are closed and its processes ended; what is left is
-    freeing every module (numpy, pybullet, shapely, lxml …) one object at a time, 50–100 ms that change nothing.
-    The exit handlers still run (a TemporaryDirectory's finalizer, logging's flush) and the output is flushed;
-    a command that left a thread of its own running gets the orderly exit, which waits for it. An exception
-    other than an exit goes out as Python shows it."""
+    teardown (:func:`leave`)."""
+    leave(outcome())
+
+
+def outcome():
+    """:func:`main` run: its exit status (what it passed to ``sys.exit``; None for 0)."""
     try:
         main()
-        code = 0
+        return 0
     except SystemExit as done:
-        code = done.code
+        return done.code
+
+
+def leave(code) -> NoReturn:
+    """Out with exit status ``code`` without the interpreter's teardown. Once the command has returned, its files
+    are closed and its processes ended; what is left is freeing every module (numpy, pybullet, shapely, lxml …)
+    one object at a time, 50–100 ms that change nothing. The exit handlers still run (a TemporaryDirectory's
+    finalizer, logging's flush) and the output is flushed; a command that left a thread of its own running gets
+    the orderly exit, which waits for it. An exception other than an exit goes out as Python shows it."""
     if any(t.is_alive() and not t.daemon for t in threading.enumerate() if t is not threading.main_thread()):
         sys.exit(code)
     if code is None:

@@ -52,10 +52,13 @@ def validate(paths, robot, spawn, launch_file, model_paths, fmt, junit, jobs, li
     """
     args = (paths, robot, spawn, launch_file, model_paths, fmt, junit, jobs, lidar_no_hit, shard, skip_sim, sdformat,
             html)
-    if skip_sim:
+    from ..sim.forkserver import active
+
+    if skip_sim or active() is not None:   # nothing to simulate, or the program started the server (worldgen.__main__)
         return _validate(*args)
     import importlib
 
+    from ..check.preload import SHARED_MODULES, SIM_MODULES
     from ..sim.forkserver import forking, one_blas_thread
 
     # the simulations' fork server, forked while this process runs one thread (numpy's BLAS held to it) and has
@@ -66,13 +69,6 @@ def validate(paths, robot, spawn, launch_file, model_paths, fmt, junit, jobs, li
         importlib.import_module(name)
     with forking(SIM_MODULES):
         _validate(*args)
-
-
-# imported here before the fork: the job and the reader (a small world's job reads it itself: check.sim_run); not
-# the checks and the launch reader, which only this process needs
-SHARED_MODULES = ("worldgen.check.sim_job", "worldgen.check.sources", "worldgen.sdf.reader")
-# imported in the server only: pybullet and the session (a client connected ahead: sim.session.warm)
-SIM_MODULES = ("worldgen.sim.session:warm", "worldgen.sim.behaviours", "worldgen.sim.lidar")
 
 
 def _validate(paths, robot, spawn, launch_file, model_paths, fmt, junit, jobs, lidar_no_hit, shard, skip_sim,

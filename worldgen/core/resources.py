@@ -12,6 +12,7 @@ from pathlib import Path
 
 PACKAGE_DIR = Path(__file__).resolve().parent.parent   # the worldgen package
 ENV_CACHE = "WORLDGEN_CACHE"   # where worldgen keeps what it made once (processed robots, generated types)
+ROBOT_MODELS = ("burger", "waffle", "waffle_pi")   # the TurtleBot3 models robots_dir() describes
 
 
 def _data_dir(name: str) -> Path:

@@ -11,11 +11,11 @@ from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
 
-from ..spec.model import ROBOT_MODELS
 from . import robot_urdf
 from ..core.boxes import box_corners
 from ..core.errors import InputError
 from ..core.numbers import floats
+from ..core.resources import ROBOT_MODELS
 from .profile import link_frames, origin_of, robot_profile
 
 

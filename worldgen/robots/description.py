@@ -19,9 +19,8 @@ from pathlib import Path
 from ..core import packages as rospkg
 from ..core.errors import InputError, WorldFileError
 from ..core.inputs import check_regular, read_capped
-from ..core.resources import robots_dir
+from ..core.resources import ROBOT_MODELS, robots_dir
 from ..core.safexml import parse_bytes
-from ..spec.model import ROBOT_MODELS
 
 MODELS = ROBOT_MODELS   # the TurtleBot3 models we describe
 _XACRO_LOCK = threading.Lock()  # xacro keeps its state in module globals

@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 from typing import Literal, Tuple
 
 from ..core.materials import STOCK_NAMES
+from ..core.resources import ROBOT_MODELS   # what a spec's robot may be
 
 Point = Tuple[float, float]
 
@@ -23,7 +24,6 @@ DEFAULT_MATERIAL = "Gazebo/Grey"
 DOOR_HEIGHT = 2.0
 WINDOW_HEIGHT = 0.8
 WINDOW_SILL = 0.5
-ROBOT_MODELS = ("burger", "waffle", "waffle_pi")
 SPEC_SUFFIXES = (".yaml", ".yml", ".json", ".txt")   # the file names a spec has (a .txt is an ASCII grid)
 
 
