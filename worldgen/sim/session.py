@@ -40,7 +40,19 @@ def warm() -> None:
     """Connect a pybullet client ahead of time (a third of a session's start): a fork server calls this once,
     and the first session of each fork takes its own copy of it (a fork copies the process's memory)."""
     if not _SPARE:
-        _SPARE.append(pb.connect(pb.DIRECT))
+        _SPARE.append(connect())
+
+
+def connect() -> int:
+    """A DIRECT pybullet client without the software renderer built into pybullet, which turns each body's
+    shapes into meshes as the body is made (10 ms for the ground plane and a TurtleBot3) and draws only for
+    ``getCameraImage``, which nothing here calls (the cameras are drawn by :mod:`.camera_scene`). The physics
+    and the rays are the same without it."""
+    client = pb.connect(pb.DIRECT)
+    renderer = pb.loadPlugin("tinyRendererPlugin", physicsClientId=client)   # built in: its id
+    if renderer >= 0:
+        pb.unloadPlugin(renderer, physicsClientId=client)
+    return client
 
 
 class Session:
@@ -60,7 +72,7 @@ class Session:
         self.rng = np.random.default_rng(seed) if seed is not None else None
         self._steps = 0
         self.robots: list[Robot] = []
-        self.client = _SPARE.pop() if _SPARE else pb.connect(pb.DIRECT)
+        self.client = _SPARE.pop() if _SPARE else connect()
         try:
             pb.setGravity(0, 0, GRAVITY, physicsClientId=self.client)
             pb.setPhysicsEngineParameter(fixedTimeStep=self.time_step, numSolverIterations=self.solver_iterations,
