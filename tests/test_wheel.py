@@ -3,6 +3,7 @@ fetched by the build hook), not only the checkout."""
 
 from __future__ import annotations
 
+import configparser
 import json
 import os
 import subprocess
@@ -57,6 +58,27 @@ def test_course_and_robot_work_from_the_wheel(unpacked_wheel, tmp_path):
     assert (next(src.rglob("stop_at_wall.py"))).stat().st_mode & 0o111
     assert next(src.rglob("turtlebot3_in_enclosed_room.launch")).is_file()
     assert next(src.rglob("*.world")).is_file()
+
+
+def test_the_wheels_worldgen_command_validates_with_its_simulation(unpacked_wheel, tmp_path):
+    """The console script the wheel declares, called as pip's script calls it, on the class room: the world
+    built and checked with the simulator, from the wheel's own files."""
+    [dist_info] = unpacked_wheel.glob("worldgen-*.dist-info")
+    scripts = configparser.ConfigParser()
+    scripts.read(dist_info / "entry_points.txt")
+    module, _, function = scripts["console_scripts"]["worldgen"].partition(":")
+    code = (
+        "import sys, worldgen\n"
+        f"assert worldgen.__file__.startswith({str(unpacked_wheel)!r}), worldgen.__file__\n"
+        f"from {module} import {function} as script\n"
+        f"sys.argv = ['worldgen', 'validate', {str(unpacked_wheel / 'worldgen' / 'examples' / 'enclosed_room.yaml')!r},"
+        " '--format', 'json']\n"
+        "sys.exit(script())\n"
+    )
+    proc = _run_from_wheel(unpacked_wheel, code, tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    [result] = json.loads(proc.stdout)["results"]
+    assert result["ok"] and "stop-at-wall" in result["checks"], result
 
 
 def test_wheel_holds_three_js_and_its_license_not_the_build_hook(unpacked_wheel):

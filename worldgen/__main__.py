@@ -19,7 +19,7 @@ def run() -> None:
     if not may_simulate(sys.argv[1:]):
         from .cli import run as command_line
 
-        command_line()
+        return command_line()
     from .check.preload import SHARED_MODULES, SIM_MODULES
     from .sim.forkserver import forking, one_blas_thread
 

@@ -23,7 +23,8 @@ from .scene_loader import SCENE_GROUP
 
 NO_HIT = {"inf": math.inf, "zero": 0.0}
 # Threads each scan's rays are cast on: the same ranges as on one (each ray is cast alone), in two thirds of the
-# time (0.53 → 0.34 ms a scan of 360 beams). pybullet keeps the pool until its client disconnects.
+# time (0.53 → 0.34 ms a scan of 360 beams). pybullet keeps the pool's thread until the client disconnects, so a
+# process still holding a session that has scanned runs two threads (and forks no server: see sim.forkserver).
 RAY_THREADS = 2
 
 
