@@ -22,6 +22,7 @@ import pytest
 from conftest import REPO, CliRunner
 from worldgen.cli import main
 from worldgen.runtime.imports import read_source
+from worldgen.runtime.naming import Naming
 from worldgen.runtime.table import CLASS_RUNTIME, TABLE, install_hint, provider, runtime_modules
 from worldgen.runtime.check import findings, survey
 
@@ -202,6 +203,20 @@ def test_install_hints_name_both_systems():
     assert install_hint("numpy") == "apt install python3-numpy"
     assert "ros-noetic-turtlebot3-msgs" in install_hint("turtlebot3_msgs")
     assert "pip install" in install_hint("not_a_known_module")
+
+
+@pytest.mark.parametrize("typed, meant", [("rospyy", "rospy"), ("sensor_msg", "sensor_msgs"),
+                                          ("geometry_msg", "geometry_msgs"), ("nmupy", "numpy")])
+def test_a_module_a_letter_or_two_off_a_known_one_is_named_as_a_typo(typed, meant):
+    """A student's misspelt import gets the module meant, not an apt search for the misspelling (ROS 2 too)."""
+    hint = install_hint(typed)
+    assert hint.startswith(f"did you mean {meant}? fix the import") and f"if {typed} is what you meant" in hint
+    assert Naming("jazzy").hint(typed).startswith(f"did you mean {meant}?")
+
+
+def test_an_unknown_module_far_from_every_known_one_gets_the_search_only():
+    assert install_hint("zebra_toolkit").startswith("worldgen does not know which package provides zebra_toolkit")
+    assert Naming("humble").hint("rclpyy").startswith("did you mean rclpy?")
 
 
 def test_the_class_runtime_is_sorted_and_each_package_provides_a_module_of_the_table():

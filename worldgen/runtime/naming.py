@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from .table import TABLE, install_hint, provider
+from .table import TABLE, install_hint, provider, unknown_hint
 
 # ROS 2 Python packages students' nodes import (any other X_msgs / X_srvs / X_interfaces follows the same rule).
 ROS2_PACKAGES = frozenset({
@@ -92,8 +92,7 @@ class Naming:
         if module == "tf_transformations":
             return f"apt install ros-{self.stack}-tf-transformations python3-transforms3d"
         if apt is None and pip is None:
-            return (f"worldgen does not know which package provides {module}: find it with apt-cache search "
-                    f"{module.lower().replace('_', '-')}, or pip install it for the Python that runs the nodes")
+            return unknown_hint(module, ROS2_PACKAGES)
         parts = [f"apt install {apt}" + (f" (with ROS 2 {self.stack.capitalize()}'s apt repository)"
                                          if apt and apt.startswith("ros-") else "")] if apt else []
         if pip:

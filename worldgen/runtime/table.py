@@ -18,7 +18,9 @@ with ``--no-install-recommends`` on Debian 12, OpenCV the bulk of it.
 
 from __future__ import annotations
 
+import difflib
 from dataclasses import dataclass
+from typing import Iterable
 
 
 @dataclass(frozen=True)
@@ -157,14 +159,25 @@ def runtime_modules() -> list[str]:
     return sorted((m for m, p in TABLE.items() if p.debian in CLASS_RUNTIME), key=lambda m: (m.lower(), m))
 
 
+def unknown_hint(module: str, known: Iterable[str] = ()) -> str:
+    """What to do about a missing ``module`` no package worldgen knows provides: the import to fix when it is a
+    letter or two off a module that worldgen knows (:data:`TABLE`, ``known``: ``rospyy`` for rospy), else how to
+    find its package."""
+    find = (f"find it with apt-cache search {module.lower().replace('_', '-')}, or pip install it for the Python "
+            f"that runs the nodes")
+    near = difflib.get_close_matches(module, sorted({*TABLE, *known}), n=1, cutoff=0.8)
+    if near:
+        return f"did you mean {near[0]}? fix the import; if {module} is what you meant, {find}"
+    return f"worldgen does not know which package provides {module}: {find}"
+
+
 def install_hint(module: str, noetic: bool = False) -> str:
     """What to do about a missing ``module``, as a finding's fix: ``apt install python3-tf (ROS Noetic:
     ros-noetic-tf)``; the table's note where there is no package; a ``pip``/``apt-cache search`` hint for a module
     worldgen does not know."""
     found = provider(module)
     if found is None:
-        return (f"worldgen does not know which package provides {module}: find it with apt-cache search "
-                f"{module.lower().replace('_', '-')}, or pip install it for the Python that runs the nodes")
+        return unknown_hint(module)
     if found.debian is None and found.noetic is None:
         return found.note
     if found.debian is None:
