@@ -168,6 +168,25 @@ def test_rooms_every_room_is_reachable_through_its_doors(tmp_path, seed, size, c
     assert all(o.width >= width + 0.2 - 1e-9 for r in world.spec.rooms for o in r.openings if o.type == "door")
 
 
+def test_rooms_asked_for_that_do_not_fit_are_said_not_silently_dropped(tmp_path):
+    """--rooms 50 in a 10 x 8 m flat: the flat gets the rooms that fit, and the command says how many of those
+    asked it has and what to change; a count that fits says nothing."""
+    from worldgen.cli import main
+
+    result = CliRunner().invoke(main, ["generate", "rooms", "--seed", "1", "--rooms", "50", "--size", "10x8",
+                                       "-o", str(tmp_path)])
+    assert result.exit_code == 0, result.output
+    (world,) = generate("rooms", 1, 1, {"rooms": 50, "size": (10.0, 8.0)})
+    have = len(world.spec.rooms)
+    assert 1 < have < 50 and (tmp_path / "rooms_1.yaml").read_text() == world.text
+    assert result.stderr.strip() == (f"worldgen: rooms_1.yaml: {have} rooms, not the 50 asked: no room of the 10 x 8 m "
+                                     "flat could be cut again with both parts at least 2.5 m a side (two door spans); "
+                                     "give a larger --size or fewer --rooms")
+    fits = CliRunner().invoke(main, ["generate", "rooms", "--seed", "1", "--rooms", str(have), "--size", "10x8",
+                                     "-o", str(tmp_path / "fits")])
+    assert fits.exit_code == 0 and fits.stderr == ""
+
+
 @SETTINGS
 @given(seed=SEEDS, size=sides(3.0, 10.0), density=st.sampled_from([0.05, 0.15, 0.3]),
        shapes=st.sampled_from(["mixed", "box", "cylinder"]))

@@ -53,6 +53,9 @@ def _kind_command(kind: str) -> click.Command:
         worlds = generate(kind, seed, count, values)
         for path in write_files({output / w.file_name: w.text for w in worlds}, force=force):
             click.echo(f"wrote {path}")
+        for world in worlds:
+            if world.note:
+                click.echo(f"worldgen: {world.file_name}: {world.note}", err=True)
 
     params = [
         click.Option(["--seed"], type=click.IntRange(0, MAX_SEED), required=True,

@@ -234,6 +234,17 @@ def make(name: str, options: RoomsOptions, space: RobotSpace, rng: Rng) -> Tuple
                   f"{_count(len(obstacles), 'piece')} of furniture; the robot starts in room '{names[start_room]}'")
 
 
+def shortfall(spec: Spec, options: RoomsOptions) -> Optional[str]:
+    """What the flat lacks of what was asked (None: nothing): fewer rooms than ``--rooms``, when no room was left
+    that could be cut again with both its parts at least :func:`min_room` a side."""
+    if len(spec.rooms) >= options.rooms:
+        return None
+    w, h = options.size
+    return (f"{len(spec.rooms)} rooms, not the {options.rooms} asked: no room of the {w:g} x {h:g} m flat could be "
+            f"cut again with both parts at least {min_room(options.door):g} m a side (two door spans); give a larger "
+            f"--size or fewer --rooms")
+
+
 def _count(n: int, what: str) -> str:
     return f"{n} {what}{'' if n == 1 else 's'}"
 

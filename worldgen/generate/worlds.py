@@ -21,13 +21,15 @@ from .text import spec_text
 
 @dataclass(frozen=True)
 class World:
-    """One generated world: its name (``KIND_SEED``, also its file's stem), seed, spec and spec text."""
+    """One generated world: its name (``KIND_SEED``, also its file's stem), seed, spec and spec text; ``note``
+    says what it lacks of what was asked (a kind's ``shortfall``: fewer rooms than ``--rooms``), else empty."""
 
     name: str
     seed: int
     spec: Spec
     text: str
     command: str
+    note: str = ""
 
     @property
     def file_name(self) -> str:
@@ -54,7 +56,8 @@ def make_world(kind: str, seed: int, options, space: RobotSpace | None = None) -
               "Made by this command, which makes the same file on every machine:",
               f"  {command}",
               f"Build it with: worldgen build {name}.yaml -o worlds/   (or check it: worldgen validate {name}.yaml)"]
-    return World(name, seed, spec, spec_text(spec, header), command)
+    short = getattr(module, "shortfall", None)   # a kind that may give less than asked says so
+    return World(name, seed, spec, spec_text(spec, header), command, (short and short(spec, options)) or "")
 
 
 def generate(kind: str, seed: int, count: int = 1, values: Dict | None = None, space: RobotSpace | None = None
