@@ -69,3 +69,20 @@ def test_shards_of_a_class_cover_every_submission_once(tmp_path, monkeypatch):
     assert not seen[0] & seen[1] and seen[0] | seen[1] == set(names) and len(seen[0]) == 3
     bad = runner.invoke(main, ["run", str(tmp_path / "subs"), "--shard", "3/2"])
     assert bad.exit_code == 2 and bad.stderr.startswith("worldgen: error: bad --shard value '3/2'")
+
+
+@pytest.mark.parametrize("files, task, said", [
+    ((), "stop-at-wall", "no stop_at_wall.py, and 0 Python files"),
+    (("a.py", "b.py"), "spin", "no spin_in_circles.py, and 2 Python files"),
+    (("a.py", "b.py"), None, "2 Python files and no --task to pick one by"),
+    ((), None, "no Python file"),
+])
+def test_a_submission_whose_node_cannot_be_told_says_what_it_holds(tmp_path, files, task, said):
+    from worldgen.bridge.grade import node_of
+    from worldgen.core.errors import InputError
+
+    for name in files:
+        (tmp_path / name).write_text("print('hi')\n")
+    with pytest.raises(InputError) as err:
+        node_of(tmp_path, task, [])
+    assert err.value.message == f"cannot tell which node to run: {said}"

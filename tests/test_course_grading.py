@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 from conftest import CliRunner
 
-from worldgen.bridge.grade import depended_packages, submissions
+from worldgen.bridge.grade import not_submissions, submissions
 from worldgen.cli import main
 
 WORLD_PACKAGE = "class_meeting_02_custom_gazebo_world"
@@ -100,13 +100,23 @@ def test_the_run_leaves_out_the_package_the_submissions_share(course, tmp_path):
     shutil.copytree(course / WORLD_PACKAGE, folder / WORLD_PACKAGE)
     found = submissions(folder)
     assert folder / WORLD_PACKAGE in found
-    assert depended_packages(found, "stop-at-wall") == [folder / WORLD_PACKAGE]
+    assert list(not_submissions(found, "stop-at-wall")) == [folder / WORLD_PACKAGE]
     # a package another depends on that holds the task's node is a submission still
     launcher = folder / "zed" / "launcher"
     launcher.mkdir(parents=True)
     (launcher / "package.xml").write_text(f'<package format="2"><name>launcher</name><version>0.1.0</version>'
                                           f'<exec_depend>{LAB}</exec_depend></package>', encoding="utf-8")
-    assert depended_packages(submissions(folder), "stop-at-wall") == [folder / WORLD_PACKAGE]
+    assert list(not_submissions(submissions(folder), "stop-at-wall")) == [folder / WORLD_PACKAGE]
+
+
+def test_the_courses_metapackage_is_no_submission(course):
+    """Grading the course's own src/intro_robo (the labs as handed out): the metapackage that groups them (ROS 1;
+    ROS 2 has none) is left out with its reason, as the world package is, and every lab is graded."""
+    left = not_submissions(submissions(course), "stop-at-wall")
+    metapackages = [p for p, why in left.items() if why.startswith("a metapackage")]
+    assert metapackages == ([course / "intro_robo"] if (course / "intro_robo" / "package.xml").is_file() else [])
+    assert left[course / WORLD_PACKAGE].startswith("packages in the folder depend on it")
+    assert course / LAB in submissions(course) and course / LAB not in left
 
 
 def test_a_submission_without_its_package_xml_is_a_failed_row(course, tmp_path):

@@ -8,7 +8,8 @@ go (:mod:`.preflight`); a submission whose node imports a module that is not ins
 holding a ``runtime`` finding per missing module. Every other submission runs in its own master on its own port,
 ``jobs`` at once, and gets one :class:`~worldgen.check.report.Result`; a submission that cannot run is an error
 finding, never the end of the grading. A package the others depend on that holds no node for the task (the
-course's world package handed in beside the labs) is no submission: it is left out (:func:`depended_packages`).
+course's world package handed in beside the labs), and a metapackage, are no submission: they are left out
+(:func:`not_submissions`).
 """
 
 from __future__ import annotations
@@ -16,7 +17,7 @@ from __future__ import annotations
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
-from ..check.discover import depended_on, unpackaged, unpackaged_finding
+from ..check.discover import depended_on, is_metapackage, unpackaged, unpackaged_finding
 from ..check.discover import shard as take_shard
 from ..check.report import Result
 from ..core.errors import InputError, WorldFileError, WorldgenError
@@ -46,12 +47,23 @@ def submissions(folder: Path) -> list[Path]:
     return sorted(found)
 
 
-def depended_packages(found: list[Path], task: str | None, names=()) -> list[Path]:
-    """The packages of a graded folder that are no submission: each one that another package there depends on
-    (package.xml) and that holds no node for the task — the course's world package handed in beside the labs
-    (their launch files start its world), a student's own world or message package."""
+def not_submissions(found: list[Path], task: str | None, names=()) -> dict[Path, str]:
+    """The packages of a graded folder that are no submission, each with why, among those holding no node for the
+    task: one that another package there depends on (package.xml) — the course's world package handed in beside
+    the labs (their launch files start its world), a student's own world or message package — and a metapackage
+    (REP 127), which only groups the packages beside it (the course's ``intro_robo``)."""
     needed = depended_on(found)
-    return [p for p in found if (manifest_name(p / MANIFEST) or p.name) in needed and not _has_node(p, task, names)]
+    left = {}
+    for p in found:
+        if is_metapackage(p):
+            why = "a metapackage: it only groups the packages beside it"
+        elif (manifest_name(p / MANIFEST) or p.name) in needed:
+            why = "packages in the folder depend on it and it holds no node for the task"
+        else:
+            continue
+        if not _has_node(p, task, names):
+            left[p] = why
+    return left
 
 
 def _has_node(submission: Path, task: str | None, names) -> bool:
@@ -72,9 +84,11 @@ def node_of(submission: Path, task: str | None, names: list[str]) -> Path:
     scripts = sorted(p for p in submission.rglob("*.py") if p.is_file() and p.name != "setup.py")
     if len(scripts) == 1:
         return scripts[0]
-    looked = " or ".join(wanted) if wanted else "a .py file"
-    raise InputError(f"cannot tell which node to run: no {looked}, and {len(scripts)} Python files",
-                     path=submission, hint="name the node file after the task, or give its name after the folder")
+    files = f"{len(scripts)} Python file{'' if len(scripts) == 1 else 's'}"
+    found = f"no {' or '.join(wanted)}, and {files}" if wanted else (f"{files} and no --task to pick one by" if
+                                                                    scripts else "no Python file")
+    raise InputError(f"cannot tell which node to run: {found}", path=submission,
+                     hint="name the node file after the task, or give its name after the folder")
 
 
 def grade_folder(folder: Path, world_path: Path | None, request: RunRequest, transport: Transport, *, jobs: int = 1,
@@ -90,7 +104,7 @@ def grade_folder(folder: Path, world_path: Path | None, request: RunRequest, tra
     found = submissions(folder)
     packaged = any((p / MANIFEST).is_file() for p in found)
     handed_in = set(unpackaged(folder, found)) if packaged else set()   # no package.xml: a failed row, not left out
-    found = [p for p in found if p not in depended_packages(found, task, nodes)]   # cli.run names them
+    found = [p for p in found if p not in not_submissions(found, task, nodes)]   # cli.run names them
     found = sorted([*found, *handed_in])
     if not found:
         raise InputError("holds no submissions (no catkin packages, no folders)", path=folder,

@@ -96,11 +96,10 @@ def run(world, nodes, task, target, duration, rate, spawn, launch_file, robot, r
         _across_worlds(worlds_source, world, nodes, request, transport, jobs, shard_k_n, min_pass, fmt, junit, flags,
                        given)
     if world.is_dir() and not (world / "model.sdf").is_file() and not (world / "model.config").is_file():
-        from ..bridge.grade import depended_packages, grade_folder, submissions
+        from ..bridge.grade import grade_folder, not_submissions, submissions
 
-        for shared in depended_packages(submissions(world), task, nodes):
-            click.echo(f"worldgen: {shared}: not graded: packages in the folder depend on it and it holds no node "
-                       f"for the task", err=True)
+        for package, why in not_submissions(submissions(world), task, nodes).items():
+            click.echo(f"worldgen: {package}: not graded: {why}", err=True)
         pages: dict = {}
         each = None
         if html is not None:
