@@ -86,3 +86,19 @@ def test_a_submission_whose_node_cannot_be_told_says_what_it_holds(tmp_path, fil
     with pytest.raises(InputError) as err:
         node_of(tmp_path, task, [])
     assert err.value.message == f"cannot tell which node to run: {said}"
+
+
+def test_a_folders_table_names_where_each_error_is_within_the_submission():
+    """A node that does not parse: its row says the file and line, relative to the submission (the JSON has the
+    whole path); a finding about the submission as a whole adds nothing after its message."""
+    from worldgen.bridge.report import folder_text
+    from worldgen.check.report import Result
+    from worldgen.core.findings import Finding
+
+    alice = Result(path="/class/alice", findings=[Finding("runtime", "error", "stop_at_wall.py does not parse",
+                                                          where="/class/alice/scripts/stop_at_wall.py:2")])
+    dave = Result(path="/class/dave", findings=[Finding("node", "error", "cannot tell which node to run",
+                                                        where="/class/dave")])
+    lines = folder_text([alice, dave]).splitlines()
+    assert "    runtime: stop_at_wall.py does not parse (scripts/stop_at_wall.py:2)" in lines
+    assert "    node: cannot tell which node to run" in lines

@@ -98,11 +98,22 @@ def run_text(result: Result, task: str | None, nodes: list[str]) -> str:
                      f"{m['laps']:.2f} laps of the {m['tape_length_m']:.2f} m tape")
     for f in result.sorted_findings():
         lines.append(f"  {f.severity:<7} {f.check}: {f.message}")
+        if f.where:
+            lines.append(f"          where: {f.where}")
         if f.fix:
             lines.append(f"          fix: {f.fix}")
     verdict = "PASS" if result.ok else "FAIL"
     lines.append(f"{task or 'run'}: {verdict}")
     return "\n".join(lines) + "\n"
+
+
+def _within(where: str | None, submission: str) -> str:
+    """A finding's place (``path:line``) as the submission's row shows it: relative to the submission's folder
+    (empty when it is the submission itself, or none is known)."""
+    folder = submission.rstrip("/") + "/"
+    if not where or where.rstrip("/") + "/" == folder:
+        return ""
+    return where[len(folder):] if where.startswith(folder) else where
 
 
 def folder_text(results: list[Result]) -> str:
@@ -119,9 +130,11 @@ def folder_text(results: list[Result]) -> str:
     for i, row in enumerate(rows):
         lines.append("  ".join(c.ljust(w) for c, w in zip(row, widths)).rstrip())
         if i:
-            for f in results[i - 1].sorted_findings():
+            r = results[i - 1]
+            for f in r.sorted_findings():
                 if f.severity == "error":
-                    lines.append(f"    {f.check}: {f.message}")
+                    place = _within(f.where, r.path)
+                    lines.append(f"    {f.check}: {f.message}" + (f" ({place})" if place else ""))
     failed = sum(not r.ok for r in results)
     lines.append(f"{len(results)} submission(s): {len(results) - failed} passed, {failed} failed")
     return "\n".join(lines) + "\n"
