@@ -404,3 +404,17 @@ def test_pictures_draw_quietly_beside_debians_matplotlib(tmp_path):
                           "-o", str(tmp_path / "room.png")], capture_output=True, text=True, timeout=120)
     assert out.returncode == 0, out.stderr
     assert "Warning" not in out.stderr and (tmp_path / "room.png").stat().st_size > 10000, out.stderr
+
+
+def test_doctor_takes_a_folders_nodes_not_its_tests(tmp_path):
+    """A student's folder with its node and its pytest tests (tests/, conftest.py): the node's imports are looked
+    up, not pytest's, which no node imports; a node named test_*.py beside it is a node still."""
+    from worldgen.runtime.doctor import node_files
+
+    (tmp_path / "stop_at_wall.py").write_text("import rospy\n")
+    (tmp_path / "test_drive.py").write_text("import rospy\n")
+    (tmp_path / "conftest.py").write_text("import pytest\n")
+    for folder in ("tests", "test"):
+        (tmp_path / folder).mkdir()
+        (tmp_path / folder / "test_stop.py").write_text("import pytest\nimport stop_at_wall\n")
+    assert [p.name for p in node_files([tmp_path])] == ["stop_at_wall.py", "test_drive.py"]

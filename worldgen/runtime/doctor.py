@@ -28,6 +28,7 @@ from .check import OK_STATES, ask, findings, survey
 from ..core.packages import IGNORE_MARKER, MANIFEST, crawl, is_workspace
 
 MAX_NODES = 5000   # files taken from one folder (a folder as big as a disk stops there)
+NOT_NODES = ("__pycache__", "test", "tests")   # folders outside packages whose Python files are no nodes
 RUNTIME = "class runtime"
 
 
@@ -99,7 +100,8 @@ def _is_python(path: Path) -> bool:
 def _folder_nodes(folder: Path) -> list[Path]:
     """The ``.py`` files under ``folder`` outside packages, the Python files in each catkin package's ``scripts/``
     and ``nodes/``, and an ament_python package's own modules (``PKG/PKG/*.py`` but ``__init__.py``); hidden
-    folders, ``CATKIN_IGNORE`` and a workspace's generated spaces skipped."""
+    folders, ``CATKIN_IGNORE``, a workspace's generated spaces and tests skipped (folders named ``test`` or
+    ``tests``, as catkin and pytest name them, and ``conftest.py``: what they import is pytest's, not a node's)."""
     found: list[Path] = []
     for package in crawl(folder, workspaces=True, limit=MAX_NODES):
         for sub in ("scripts", "nodes"):
@@ -114,8 +116,8 @@ def _folder_nodes(folder: Path) -> list[Path]:
             dirnames.clear()
             continue
         keep = ["src"] if is_workspace(here) else dirnames
-        dirnames[:] = sorted(d for d in keep if not d.startswith(".") and d != "__pycache__")
-        found += [here / f for f in sorted(filenames) if f.endswith(".py") and f != "setup.py"]
+        dirnames[:] = sorted(d for d in keep if not d.startswith(".") and d not in NOT_NODES)
+        found += [here / f for f in sorted(filenames) if f.endswith(".py") and f not in ("setup.py", "conftest.py")]
         if len(found) > MAX_NODES:
             break
     return sorted(set(found))
