@@ -112,15 +112,15 @@ _MARKING = re.compile(rf"(?:floor marking )?({MARKINGS_MODEL}/\w+)")
 
 
 def marking_labels(spec) -> Dict[str, tuple]:
-    """Each floor marking's SDF label (``floor_markings/track``) → what the spec calls it (``line 'track'``,
-    ``patch 2``) and where it is (``spec.yaml:12``)."""
+    """Each floor marking's SDF label (``floor_markings/track``) → what the spec calls it (``line 'track'``; an
+    unnamed one by the name the world gives it, ``patch_1``) and where it is (``spec.yaml:12``)."""
     from ..spec.markings import marking_names
 
     found = {}
     line_names, patch_names = marking_names(spec.lines, spec.patches)
     for kind, names, items in (("line", line_names, spec.lines), ("patch", patch_names, spec.patches)):
         for i, (name, item) in enumerate(zip(names, items)):
-            called = f"{kind} '{item.name}'" if item.name else f"{kind} {i + 1}"
+            called = f"{kind} '{item.name}'" if item.name else name   # line_1: as the world names it
             where = f"{spec.source}:{item.line}" if spec.source and item.line else (spec.source or called)
             found[f"{MARKINGS_MODEL}/{name}"] = (called, where)
     return found

@@ -53,7 +53,7 @@ def read_markings(src: Source, keys: dict) -> Tuple[Tuple[FloorLine, ...], Tuple
 
 
 def read_line(src: Source, node: Node, index: int) -> FloorLine:
-    label = f"line {index + 1}"
+    label = f"line_{index}"   # the name an unnamed line gets (marking_names): the world's
     keys = values.mapping(src, node, label, LINE_KEYS, required=("points", "color"))
     name = values.name(src, keys["name"], "line name") if "name" in keys else None
     what = f"line '{name}'" if name else label
@@ -100,7 +100,7 @@ def _points(src: Source, node: Node, what: str, closed: bool) -> Tuple[Tuple[flo
 
 
 def read_patch(src: Source, node: Node, index: int) -> FloorPatch:
-    label = f"patch {index + 1}"
+    label = f"patch_{index}"
     keys = values.mapping(src, node, label, PATCH_KEYS, required=("color",))
     name = values.name(src, keys["name"], "patch name") if "name" in keys else None
     what = f"patch '{name}'" if name else label
@@ -140,8 +140,7 @@ def _check_names(src: Source, lines, patches) -> None:
         for i, item in enumerate(items):
             name = item.name or f"{kind}_{i}"
             if name in taken:
-                what = (f"{kind} name '{name}'" if item.name else
-                        f"{kind} {i + 1} has no name, and the one it gets, '{name}',")
+                what = f"{kind} name '{name}'" if item.name else f"{name} (the name an unnamed {kind} gets)"
                 src.fail(f"{what} is already the name of {taken[name]}", item.line,
                          hint="give every line and patch its own name")
             taken[name] = f"the {kind} on line {item.line}"
