@@ -29,13 +29,12 @@ from .outcome import RunRequest
 from .preflight import blocked_result, many_findings
 from .report import result_of, task_context
 from .supervise import stop_everything
-from .transport import Transport
+from .transport import Transport, tried
 from .world import load_world
 
 TASK_NODES = {"stop-at-wall": "stop_at_wall.py", "spin": "spin_in_circles.py", "drive-square": "drive_square.py",
               "wall-follow": "wall_follower.py", "person-follow": "person_follower.py",
               "line-follow": "line_follower.py"}
-START_TRIES = 3
 
 
 def submissions(folder: Path) -> list[Path]:
@@ -185,10 +184,4 @@ def _check_buildable(submission: Path) -> None:
 
 def _run(world, specs, options, transport: Transport):
     """One submission's run; a start-up that lost a race for a port to another job is tried again."""
-    for attempt in range(START_TRIES):
-        try:
-            return transport.run_nodes(world, specs, options)
-        except InputError as err:
-            if not any(text in str(err) for text in transport.retry) or attempt == START_TRIES - 1:
-                raise
-    raise AssertionError("unreachable")
+    return tried(transport, lambda: transport.run_nodes(world, specs, options))

@@ -11,7 +11,7 @@ from .preflight import blocked_result, blocked_text, node_findings
 from .record import plot_png, trace_csv
 from .report import result_of, run_json, run_text, task_context
 from .rubrics import PERSON
-from .transport import Transport
+from .transport import Transport, tried
 from .world import graded_robot, load_world
 
 
@@ -24,8 +24,12 @@ def run_single(world_path: Path, node_args, request: RunRequest, outputs: Output
     o = outputs
     check_free([p for p in (o.junit, o.plot, o.csv, o.bag, o.html) if p is not None], o.force)
     python = transport.node_python()
-    with transport.head_start() as head:   # the master's and simulator's starts, while the rest is read
-        return _checked_run(world_path, node_args, request, o, transport, python, head)
+
+    def attempt():
+        with transport.head_start() as head:   # the master's and simulator's starts, while the rest is read
+            return _checked_run(world_path, node_args, request, o, transport, python, head)
+
+    return tried(transport, attempt)   # a start-up that lost a port to another job: again, on another port
 
 
 def _checked_run(world_path: Path, node_args, request: RunRequest, o: Outputs, transport: Transport, python: str,

@@ -6,11 +6,16 @@ from __future__ import annotations
 
 import contextlib
 from pathlib import Path
-from typing import Sequence
+from typing import Callable, Sequence, TypeVar
 
+from ..core.errors import InputError
 from ..runtime.naming import Naming
 from .outcome import NodeSpec, Outcome, RunOptions
 from .world import World
+
+
+START_TRIES = 3   # a run whose start-up lost a race for a port to another job: this many tries in all
+T = TypeVar("T")
 
 
 class Transport:
@@ -40,3 +45,16 @@ class Transport:
 
     def run_nodes(self, world: World, nodes: list[NodeSpec], options: RunOptions, head=None) -> Outcome:
         raise NotImplementedError
+
+
+def tried(transport: Transport, attempt: Callable[[], T]) -> T:
+    """``attempt()``, started again (up to :data:`START_TRIES` in all) when it fails at start-up with one of the
+    transport's ``retry`` errors: a free port that another job took first (a master of a run beside it, or a
+    connection's own port), which a second start on another port does not meet."""
+    for tries in range(1, START_TRIES + 1):
+        try:
+            return attempt()
+        except InputError as err:
+            if tries == START_TRIES or not any(text in str(err) for text in transport.retry):
+                raise
+    raise AssertionError("unreachable")
