@@ -117,6 +117,8 @@ def test_drive_stop_at_wall_with_plot_and_csv(world, tmp_path):
     assert rows[1].startswith("1,0.5,0,0,0.0000,1.9")
     again = CliRunner().invoke(main, ["drive", str(world), "--spawn", "-0.5,0", "--csv", str(csv)])
     assert again.exit_code == 2 and "exists" in again.output
+    text = CliRunner().invoke(main, ["drive", str(world), "--spawn", "-0.5,0", "--csv", str(csv), "--force"])
+    assert text.exit_code == 0 and text.stdout.splitlines()[-1] == f"wrote {csv}"   # the text report says so
 
 
 def test_drive_reports_a_collision_with_exit_1(world):

@@ -133,9 +133,11 @@ def drive(world, behaviour, robot, spawn, target, kp, ki, kd, duration, max_spee
         first = result["runs"][0]
         files[html] = drive_page(world, result, model_paths,
                                  [] if first["ok"] or result["behaviour"] == "spin" else _failures(first))
-    if files:
-        write_files(files, force=force)
+    written = write_files(files, force=force) if files else []
     click.echo(json.dumps(_finite(_summary(result)), indent=2) if fmt == "json" else text_report(result))
+    if fmt != "json":   # (the JSON report stays the whole of stdout)
+        for path in written:
+            click.echo(f"wrote {path}")
     sys.exit(EXIT_OK if all(run["ok"] for run in result["runs"]) else EXIT_FAILED)
 
 
