@@ -119,7 +119,7 @@ def marking_labels(spec) -> Dict[str, tuple]:
     found = {}
     line_names, patch_names = marking_names(spec.lines, spec.patches)
     for kind, names, items in (("line", line_names, spec.lines), ("patch", patch_names, spec.patches)):
-        for i, (name, item) in enumerate(zip(names, items)):
+        for name, item in zip(names, items):
             called = f"{kind} '{item.name}'" if item.name else name   # line_1: as the world names it
             where = f"{spec.source}:{item.line}" if spec.source and item.line else (spec.source or called)
             found[f"{MARKINGS_MODEL}/{name}"] = (called, where)
