@@ -322,3 +322,31 @@ def test_rooms_simulated_ahead_give_what_each_room_gives_from_its_own_spawn(tmp_
         [alone] = results("--spawn", ",".join(f"{v:g}" for v in room["spawn"]))
         assert [room["metrics"].get(k) for k in sim_numbers] == [alone["metrics"].get(k) for k in sim_numbers]
         assert room["checks"] == alone["checks"]
+
+
+def test_ctrl_c_in_the_middle_of_a_validate_leaves_nothing(tmp_path):
+    """Ctrl-C while the program validates a folder of worlds, a simulation forked from its early server under way:
+    click's "Aborted!" and exit 1, and neither a process nor the server's folder left behind."""
+    import signal
+    import time
+
+    from bridgetools import no_leftovers
+
+    worlds = tmp_path / "worlds"
+    worlds.mkdir()
+    for i in range(30):
+        (worlds / f"room_{i:02d}.world").write_text(ROOM)
+    marker = f"WORLDGEN_EARLY_TEST={tmp_path.name}"
+    env = dict(os.environ, PYTHONPATH=str(REPO), TMPDIR=str(tmp_path), WORLDGEN_EARLY_TEST=tmp_path.name)
+    proc = subprocess.Popen([sys.executable, "-m", "worldgen", "validate", str(worlds)], env=env, cwd=tmp_path,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    said = ""
+    while not said.startswith("[1/30]") and proc.poll() is None:   # the first world checked, the next simulating
+        said = proc.stderr.readline()
+    assert said.startswith("[1/30]"), said + proc.stderr.read()
+    time.sleep(0.1)
+    proc.send_signal(signal.SIGINT)
+    out, err = proc.communicate(timeout=60)
+    assert proc.returncode == 1 and err.strip().endswith("Aborted!") and "Traceback" not in err, err
+    no_leftovers(marker)
+    assert sorted(p.name for p in tmp_path.iterdir() if p.name.startswith("worldgen-forks-")) == []
