@@ -103,7 +103,8 @@ def grade_folder(folder: Path, world_path: Path | None, request: RunRequest, tra
     found = submissions(folder)
     packaged = any((p / MANIFEST).is_file() for p in found)
     handed_in = set(unpackaged(folder, found)) if packaged else set()   # no package.xml: a failed row, not left out
-    found = [p for p in found if p not in not_submissions(found, task, nodes)]   # cli.run names them
+    left_out = not_submissions(found, task, nodes)   # cli.run names them
+    found = [p for p in found if p not in left_out]
     found = sorted([*found, *handed_in])
     if not found:
         raise InputError("holds no submissions (no catkin packages, no folders)", path=folder,

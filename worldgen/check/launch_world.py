@@ -50,7 +50,6 @@ def world_not_found(info, path: Path, findings: List[Finding], graded: bool, sea
                 fix=fix)]
 
 
-
 def _where_to_put(package: str, graded: bool, ros2: bool) -> str:
     """Where the missing package can go so that the world is found."""
     places = ([f"put {package} in the folder graded, beside the submissions (one copy serves them all)"] if graded
