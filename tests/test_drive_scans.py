@@ -7,6 +7,7 @@ import dataclasses
 import json
 import math
 
+import numpy as np
 import pytest
 
 from worldgen.sim.lidar import Scan, scan_row
@@ -55,7 +56,7 @@ def test_scan_row_is_compact_and_marks_no_hits():
     for no_hit in (math.inf, 0.0):
         scan = Scan(angle_min=0.0, angle_max=math.pi, angle_increment=math.pi / 2, range_min=0.12, range_max=3.5,
                     ranges=[1.2345, no_hit, 0.12, 3.5, 0.4996], true_ranges=[1.23, math.inf, 0.11, 3.49, 0.5],
-                    points=[None] * 5, origin=(1.234567, -2.000049, 0.17, -3.14159265))
+                    hits=np.full((5, 3), np.nan), origin=(1.234567, -2.000049, 0.17, -3.14159265))
         row = scan_row(scan)
         assert row == [1.2346, -2.0, -3.1416, [1234, -1, 120, 3500, 500]]
         assert all(type(v) is int for v in row[3])

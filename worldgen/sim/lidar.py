@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import functools
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 import pybullet as pb
@@ -33,8 +33,9 @@ class Scan:
     """One revolution, shaped like sensor_msgs/LaserScan plus what a picture or a check needs.
 
     ``ranges`` are what the sensor reports (noise, no-hit value); ``true_ranges`` are the exact
-    distances (``inf`` for no hit); ``points`` are the world (x, y, z) of each hit (None for no hit);
-    ``origin`` is the sensor's world (x, y, z, yaw); ``time`` the simulated time of the scan.
+    distances (``inf`` for no hit); ``hits`` the world (x, y, z) of each beam's end (beams × 3), a hit where
+    ``true_ranges`` is finite (:attr:`points`: None for no hit); ``origin`` is the sensor's world (x, y, z, yaw);
+    ``time`` the simulated time of the scan.
     """
 
     angle_min: float
@@ -44,14 +45,30 @@ class Scan:
     range_max: float
     ranges: list[float]
     true_ranges: list[float]
-    points: list[tuple[float, float, float] | None]
+    hits: np.ndarray
     origin: tuple[float, float, float, float]
     time: float = 0.0
     frame_id: str = "base_scan"
+    # the ranges as arrays, kept by the cast that made them (:meth:`array` makes them when missing)
+    arrays: dict = field(default_factory=dict, repr=False, compare=False)
 
     @property
     def angles(self) -> list[float]:
         return [self.angle_min + i * self.angle_increment for i in range(len(self.ranges))]
+
+    @property
+    def points(self) -> list[tuple[float, float, float] | None]:
+        """The world (x, y, z) of each beam's hit, None for a beam that hit nothing."""
+        return [tuple(p) if math.isfinite(r) else None for p, r in zip(self.hits.tolist(), self.true_ranges)]
+
+    def array(self, true: bool = False) -> np.ndarray:
+        """``ranges`` (``true``: ``true_ranges``) as a read-only array."""
+        key = "true" if true else "measured"
+        if key not in self.arrays:
+            values = np.array(self.true_ranges if true else self.ranges, float)
+            values.setflags(write=False)
+            self.arrays[key] = values
+        return self.arrays[key]
 
     def to_dict(self) -> dict:
         return {"angle_min": self.angle_min, "angle_max": self.angle_max, "angle_increment": self.angle_increment,
@@ -86,28 +103,29 @@ def cast_scan(client: int, params: LidarParams, position, orientation, *, no_hit
     results = pb.rayTestBatch(starts, ends, collisionFilterMask=mask, numThreads=RAY_THREADS,
                               physicsClientId=client)
     span = params.range_max - params.range_min
-    found = np.array([(r[0], r[2]) for r in results], float).reshape(-1, 2)   # body id, hit fraction
-    hit, fractions = found[:, 0] >= 0, found[:, 1]
+    hit = np.fromiter([r[0] >= 0 for r in results], bool, len(results))           # a body was hit
+    fractions = np.fromiter([r[2] for r in results], float, len(results))         # where along the ray
     true = np.where(hit, params.range_min + fractions * span, np.inf)
     measured = true.copy()
     if rng is not None and params.noise_stddev > 0:
         measured[hit] += rng.normal(params.noise_mean, params.noise_stddev, int(hit.sum()))
     measured[hit] = np.clip(measured[hit], params.range_min, params.range_max)
     measured[~hit] = NO_HIT[no_hit]
-    hit_points = starts + (ends - starts) * fractions[:, None]
     yaw = math.atan2(rot[1, 0], rot[0, 0])
+    true.setflags(write=False)
+    measured.setflags(write=False)
     return Scan(angle_min=params.min_angle, angle_max=params.min_angle + (params.samples - 1) * params.angle_increment,
                 angle_increment=params.angle_increment, range_min=params.range_min, range_max=params.range_max,
-                ranges=measured.tolist(), true_ranges=true.tolist(),
-                points=[tuple(p) if h else None for p, h in zip(hit_points.tolist(), hit.tolist())],
-                origin=(float(origin[0]), float(origin[1]), float(origin[2]), yaw), time=time, frame_id=params.link)
+                ranges=measured.tolist(), true_ranges=true.tolist(), hits=starts + (ends - starts) * fractions[:, None],
+                origin=(float(origin[0]), float(origin[1]), float(origin[2]), yaw), time=time, frame_id=params.link,
+                arrays={"true": true, "measured": measured})
 
 
 def front_distance(scan: Scan, half_angle: float = math.radians(10), *, true: bool = False) -> float | None:
     """The nearest reading within ±``half_angle`` of straight ahead (the sensor's +x), ignoring no-hit beams
     (``inf`` or 0) — what a student's stop-at-wall node computes. ``true`` uses the exact distances. None when
     every beam there reads no hit."""
-    values = np.asarray(scan.true_ranges if true else scan.ranges, float)
+    values = scan.array(true)
     ahead = values[_ahead(scan.angle_min, scan.angle_increment, len(values), half_angle)]
     ahead = ahead[np.isfinite(ahead) & (ahead > 0.0)]
     return float(ahead.min()) if ahead.size else None
@@ -134,7 +152,7 @@ def scan_row(scan: Scan) -> list:
     """One scan, compact, for a replay: ``[ox, oy, yaw, [mm, …]]`` — the sensor's world position (m, 4 decimals)
     and heading (rad, 4 decimals), and each beam's reported range (noise included) in whole millimetres, -1 for a
     beam that hit nothing (whether it reads ``inf`` or 0)."""
-    hit = np.isfinite(np.asarray(scan.true_ranges, float))
-    mm = np.where(hit, np.rint(np.asarray(scan.ranges, float) * 1000.0), -1.0).astype(int)
+    hit = np.isfinite(scan.array(true=True))
+    mm = np.where(hit, np.rint(scan.array() * 1000.0), -1.0).astype(int)
     x, y, _, yaw = scan.origin
     return [round(x, 4), round(y, 4), round(yaw, 4), mm.tolist()]
