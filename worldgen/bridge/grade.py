@@ -91,10 +91,11 @@ def node_of(submission: Path, task: str | None, names: list[str]) -> Path:
 
 
 def grade_folder(folder: Path, world_path: Path | None, request: RunRequest, transport: Transport, *, jobs: int = 1,
-                 nodes=(), shard: tuple[int, int] | None = None, each=None) -> list[Result]:
+                 nodes=(), shard: tuple[int, int] | None = None, each=None, left_out=None) -> list[Result]:
     """One result per submission in ``folder`` (each run on its own, ``jobs`` at once); with ``shard``
     (K, N), only the K-th of N stable shares of the submissions (:func:`worldgen.check.discover.shard`).
-    ``each(result, world, trace)`` is called for every run that ran, with every scan recorded (a replay page)."""
+    ``each(result, world, trace)`` is called for every run that ran, with every scan recorded (a replay page);
+    ``left_out(package, why)`` for each package that is no submission (:func:`not_submissions`), before any runs."""
     python = transport.node_python()
     world = load_world(world_path or examples_dir() / "enclosed_room.yaml", spawn=request.spawn,
                        robot=request.robot, launch=request.launch)
@@ -103,8 +104,10 @@ def grade_folder(folder: Path, world_path: Path | None, request: RunRequest, tra
     found = submissions(folder)
     packaged = any((p / MANIFEST).is_file() for p in found)
     handed_in = set(unpackaged(folder, found)) if packaged else set()   # no package.xml: a failed row, not left out
-    left_out = not_submissions(found, task, nodes)   # cli.run names them
-    found = [p for p in found if p not in left_out]
+    passed_over = not_submissions(found, task, nodes)
+    for package, why in passed_over.items() if left_out is not None else ():
+        left_out(package, why)
+    found = [p for p in found if p not in passed_over]
     found = sorted([*found, *handed_in])
     if not found:
         raise InputError("holds no submissions (no catkin packages, no folders)", path=folder,

@@ -96,10 +96,8 @@ def run(world, nodes, task, target, duration, rate, spawn, launch_file, robot, r
         _across_worlds(worlds_source, world, nodes, request, transport, jobs, shard_k_n, min_pass, fmt, junit, flags,
                        given)
     if world.is_dir() and not (world / "model.sdf").is_file() and not (world / "model.config").is_file():
-        from ..bridge.grade import grade_folder, not_submissions, submissions
+        from ..bridge.grade import grade_folder
 
-        for package, why in not_submissions(submissions(world), task, nodes).items():
-            click.echo(f"worldgen: {package}: not graded: {why}", err=True)
         pages: dict = {}
         each = None
         if html is not None:
@@ -111,7 +109,8 @@ def run(world, nodes, task, target, duration, rate, spawn, launch_file, robot, r
                 pages[result.path] = run_page(result, world_run, trace, back=BACK)
 
         results = grade_folder(world, folder_world, request, transport, jobs=jobs, nodes=nodes, shard=shard_k_n,
-                               each=each)
+                               each=each, left_out=lambda package, why: click.echo(
+                                   f"worldgen: {package}: not graded: {why}", err=True))
         if html is not None:
             from ..view.grades import write_report
 
