@@ -20,6 +20,7 @@ from conftest import CliRunner
 
 from rosstubs import SYSTEM_PYTHON
 from bridgetools import NODES, REPO, ROOM, leftovers, need_ros, no_leftovers, tag, wait_master  # noqa: F401 (tag: a fixture)
+from worldgen.bridge.outcome import ends_in_traceback
 from worldgen.cli import main
 from worldgen.packages.course_ros1 import write_course
 
@@ -144,6 +145,29 @@ def test_a_node_failing_on_import_is_a_finding(tag):
     messages = [f["message"] for f in json.loads(result.stdout)["findings"]]
     assert any("crash_on_import failed" in m and "cannot import name 'Twistt'" in m for m in messages), messages
     assert any("no message on /cmd_vel" in m for m in messages)
+
+
+def test_a_node_crashing_midway_is_a_finding_at_full_speed(tag):
+    """At --rate max the 20 simulated seconds may end while the node, its exception raised at 2 s, is still in
+    rospy's shutdown: the crash is still the finding it is at any rate."""
+    result = run([str(REPO / "examples" / "enclosed_room.yaml"), str(NODES / "crash_midway.py"), "--rate", "max",
+                  "--format", "json"])
+    assert result.exit_code == 1, result.output
+    doc = json.loads(result.stdout)
+    messages = [f["message"] for f in doc["findings"]]
+    assert any("crash_midway failed (exit code 1): ValueError: the ranges were empty" in m for m in messages), messages
+    assert doc["metrics"]["cmd_vel_messages"] == 1
+
+
+def test_output_ending_in_a_traceback_is_told_from_output_going_on():
+    crash = subprocess.run([sys.executable, "-c", "print('started')\ntry:\n    {}['ranges']\n"
+                            "except KeyError:\n    raise ValueError('the ranges were empty')"],
+                           capture_output=True, text=True)
+    assert crash.returncode == 1 and "During handling" in crash.stderr   # a chained traceback, as Python prints it
+    assert ends_in_traceback(crash.stdout + crash.stderr)
+    assert not ends_in_traceback(crash.stdout + crash.stderr + "[INFO] caught it, going on\n")
+    assert not ends_in_traceback("started\n[INFO] spinning\n")
+    assert not ends_in_traceback("Traceback (most recent call last):\n")   # cut off before its frames
 
 
 @pytest.mark.parametrize("make, expected", [

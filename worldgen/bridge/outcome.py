@@ -16,6 +16,8 @@ from .rubrics import DEFAULT_DURATION, person_loop
 from .logtail import TAIL, amount
 from .supervise import Child, Leftover, Supervisor
 
+CRASH_GRACE = 5.0   # s of real time a node whose output ends in a traceback gets to finish exiting (finish_run)
+
 
 @dataclass
 class NodeSpec:
@@ -273,6 +275,8 @@ def finish_run(simulator: Child, children: list[Child], nodes: list[NodeSpec], o
     writes what it has)."""
     ended_by = wait_for_end(simulator, options, [c for c, n in zip(children, nodes) if n.required], supervisor,
                             trace_file)
+    if trace_file.is_file():
+        let_crashes_end(children)
     alive = {c.name: c.running for c in children}
     if trace_file.is_file():
         supervisor.end_all()
@@ -282,6 +286,29 @@ def finish_run(simulator: Child, children: list[Child], nodes: list[NodeSpec], o
         raise WorldgenError(f"the simulation ended without a result: {simulator.last_error_line() or 'no output'}",
                             hint="please report this to the worldgen developers")
     return json.loads(trace_file.read_text(encoding="utf-8")), alive, ended_by
+
+
+def let_crashes_end(children: list[Child], grace: float = CRASH_GRACE) -> None:
+    """Wait, up to ``grace`` s, for the nodes still running whose output ends in a Python traceback: an uncaught
+    exception is ending them, and rospy's or rclpy's shutdown takes a few tenths of a second, which a run at
+    ``--rate max`` may finish within. Waited for, such a node's crash is reported as at any rate; a healthy node
+    costs no wait."""
+    crashing = [c for c in children if c.running and ends_in_traceback(c.output())]
+    deadline = time.monotonic() + grace
+    while any(c.running for c in crashing) and time.monotonic() < deadline:
+        time.sleep(0.01)
+
+
+def ends_in_traceback(output: str) -> bool:
+    """Whether ``output`` ends with a Python traceback: its last "Traceback (most recent call last):" (of a
+    chain, the last), then the frames (indented), and last the exception's own line."""
+    lines = [line for line in output.splitlines() if line.strip()]
+    starts = [i for i, line in enumerate(lines) if line.startswith("Traceback (most recent call last):")]
+    if not starts:
+        return False
+    after = lines[starts[-1] + 1:]
+    unindented = [i for i, line in enumerate(after) if not line.startswith(" ")]
+    return unindented == [len(after) - 1] and len(after) > 1
 
 
 def check_simulator(simulator: Child) -> None:
