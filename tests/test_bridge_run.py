@@ -240,6 +240,14 @@ def test_plot_csv_bag_and_junit(tag, tmp_path):
     assert 'name="spin"' in junit and "<failure" in junit
     again = run([str(ROOM), str(NODES / "spin_rate_loop.py"), "--duration", "1", "--plot", str(files["png"])])
     assert again.exit_code == 2 and "--force" in again.output   # an existing output is kept
+    manifest = tmp_path / "package.xml"
+    manifest.write_text("<package format='2'><name>lab</name></package>\n")
+    refused = run([str(ROOM), str(NODES / "spin_rate_loop.py"), "--duration", "1", "--junit", str(manifest)])
+    assert refused.exit_code == 2 and "is not a JUnit report" in refused.output and "--force" in refused.output
+    assert "<package" in manifest.read_text()
+    replaced = run([str(ROOM), str(NODES / "spin_rate_loop.py"), "--task", "spin", "--rate", "max", "--duration",
+                    "1", "--junit", str(files["xml"])])   # the earlier report: replaced without --force
+    assert replaced.exit_code == 1 and files["xml"].read_text() != junit
 
 
 def test_rospy_missing_names_the_package(tag, tmp_path):

@@ -168,6 +168,33 @@ def test_junit_has_a_testcase_per_file_and_check(tmp_path):
     assert not list(report.parent.glob(".*.tmp"))   # written atomically: no temporary left behind
 
 
+def test_junit_replaces_an_earlier_report_and_nothing_else(tmp_path):
+    world = write_world(tmp_path / "room.world", room_walls(4.0))
+    report = tmp_path / "report.xml"
+    assert run_cli(world, "--skip-sim", "--junit", report).exit_code == 0
+    first = report.read_bytes()
+    report.write_bytes(first.replace(b'tests="', b'tests="9'))   # an earlier report, whatever it said
+    assert run_cli(world, "--skip-sim", "--junit", report).exit_code == 0
+    assert report.read_bytes() == first
+    manifest = tmp_path / "package.xml"   # named by mistake: kept, byte for byte
+    manifest.write_text("<package format='2'><name>lab</name></package>\n")
+    for kept in (manifest, tmp_path / "notes.xml"):
+        if kept != manifest:
+            kept.write_bytes(b"not xml at all")
+        before = kept.read_bytes()
+        out = run_cli(world, "--skip-sim", "--junit", kept)
+        assert out.exit_code == 2 and kept.read_bytes() == before
+        assert out.output == f"worldgen: error: {kept} exists and is not a JUnit report (give --junit another " \
+                             "name: it replaces only an earlier report)\n"
+
+
+def test_html_of_a_folder_is_refused_a_page_name(tmp_path):
+    world = write_world(tmp_path / "room.world", room_walls(4.0))
+    out = run_cli(world, "--skip-sim", "--html", tmp_path / "report.html")
+    assert out.exit_code == 2 and "give a folder name such as report/" in out.output
+    assert not (tmp_path / "report.html").exists()
+
+
 def test_reports_hold_file_names_that_are_not_text(tmp_path):
     # a control character, and byte 0xff (not UTF-8), which Python keeps as the lone surrogate \udcff
     bad = write_world(tmp_path / "a\x01b\udcff.world", room_walls(4.0, gap=(0.0, 0.6)))

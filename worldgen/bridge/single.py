@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..check.report import to_junit
+from ..check.report import check_junit_target, to_junit
 from ..core.fsio import check_free, write_files
 from .outcome import Outputs, RunRequest
 from .preflight import blocked_result, blocked_text, node_findings
@@ -22,7 +22,9 @@ def run_single(world_path: Path, node_args, request: RunRequest, outputs: Output
     ``outputs.html_page(result, world, trace)`` (the command line's, from :mod:`worldgen.view`; the bridge draws
     nothing itself), with every scan recorded for it."""
     o = outputs
-    check_free([p for p in (o.junit, o.plot, o.csv, o.bag, o.html) if p is not None], o.force)
+    check_free([p for p in (o.plot, o.csv, o.bag, o.html) if p is not None], o.force)
+    if o.junit is not None:
+        check_junit_target(o.junit, o.force)   # an earlier report is replaced
     python = transport.node_python()
 
     def attempt():

@@ -221,6 +221,34 @@ def to_junit(results: list[Result], suite_name: str = "worldgen validate") -> by
     return etree.tostring(suites, pretty_print=True, xml_declaration=True, encoding="UTF-8")
 
 
+def check_junit_target(path, force: bool = False, forceable: bool = True) -> None:
+    """Refuse (InputError, before anything runs) a ``--junit`` FILE that cannot take the report: a folder, a path
+    through a file, or a file that exists and is not a JUnit report (a ``package.xml`` named by mistake) unless
+    ``force`` (``forceable``: the command has ``--force``). A report an earlier run wrote there is replaced."""
+    import os
+    from pathlib import Path
+
+    from ..core.errors import InputError, OutputExistsError
+    from ..core.safexml import parse_file
+
+    path = Path(path)
+    if path.is_dir():
+        raise InputError(f"cannot write {path}: it is a folder", hint="give a file name for --junit")
+    for parent in path.parents:
+        if parent.exists():
+            if not parent.is_dir():
+                raise InputError(f"cannot write {path}: {parent} is not a folder",
+                                 hint="give --junit a path in an existing or new folder")
+            break
+    if force or not os.path.lexists(path):
+        return
+    root = parse_file(path) if path.is_file() and not path.is_symlink() else None
+    if root is None or root.tag not in ("testsuites", "testsuite"):
+        raise OutputExistsError(f"{path} exists and is not a JUnit report", path=None,
+                                hint="give --junit another name: it replaces only an earlier report"
+                                     + (", or pass --force to overwrite the file" if forceable else ""))
+
+
 _NOT_XML = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\ud800-\udfff\ufffe\uffff]")
 
 

@@ -77,6 +77,10 @@ def run(world, nodes, task, target, duration, rate, spawn, launch_file, robot, r
 
     check_suffix(plot, "png", "--plot")
     check_suffix(junit, "junit", "--junit")
+    if junit is not None:
+        from ..check.report import check_junit_target
+
+        check_junit_target(junit, force)
     if html is not None:
         from ..view.page import require_three
 

@@ -74,7 +74,7 @@ def validate(paths, robot, spawn, launch_file, model_paths, fmt, junit, jobs, li
 def _validate(paths, robot, spawn, launch_file, model_paths, fmt, junit, jobs, lidar_no_hit, shard, skip_sim,
               sdformat, html):
     from ..core.fsio import write_file
-    from ..check.report import to_json, to_junit, to_text
+    from ..check.report import check_junit_target, to_json, to_junit, to_text
     from ..core.spawnpose import parse_spawn
     from ..check.discover import parse_shard
     from ..check.discover import shard as take_shard
@@ -89,7 +89,7 @@ def _validate(paths, robot, spawn, launch_file, model_paths, fmt, junit, jobs, l
         from .outputs import check_suffix
 
         check_suffix(junit, "junit", "--junit")
-        _check_writable(junit)
+        check_junit_target(junit, forceable=False)
     if html is not None:
         from ..view.grades import check_report_folder
         from ..view.page import require_three
@@ -114,20 +114,6 @@ def _validate(paths, robot, spawn, launch_file, model_paths, fmt, junit, jobs, l
                      "worldgen validate " + " ".join(str(p) for p in paths))
     click.echo(to_json(results) if fmt == "json" else to_text(results), nl=False)
     sys.exit(EXIT_OK if all(r.ok for r in results) else EXIT_FAILED)
-
-
-def _check_writable(target: Path) -> None:
-    """Refuse (InputError) a --junit path that cannot become a file, before anything runs."""
-    from ..core.errors import InputError
-
-    if target.is_dir():
-        raise InputError(f"cannot write {target}: it is a folder", hint="give a file name for --junit")
-    for parent in target.parents:
-        if parent.exists():
-            if not parent.is_dir():
-                raise InputError(f"cannot write {target}: {parent} is not a folder",
-                                 hint="give --junit a path in an existing or new folder")
-            return
 
 
 COMMANDS = [validate]

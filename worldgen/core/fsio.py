@@ -35,7 +35,7 @@ STALE_SECONDS = 15 * 60   # a worldgen run holds its staging for well under a se
 _LEFTOVER = re.compile(r"^\.(?P<name>.+)\.worldgen-(?P<kind>tmp|journal|staging|old)-(?P<pid>\d+)(?:-[A-Za-z0-9_]*)?$")
 _RENAME_NOREPLACE, _RENAME_EXCHANGE = 1, 2
 _LIBC: dict = {}
-_FORCE_HINT = "pass --force to overwrite it, or choose another output with -o"
+_FORCE_HINT = "pass --force to overwrite it, or give another name"
 
 
 def _as_bytes(data: FileData) -> bytes:

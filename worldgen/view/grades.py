@@ -57,6 +57,10 @@ def check_report_folder(folder: Path) -> None:
     """Refuse (InputError) a ``--html`` folder that holds anything but a report an earlier ``--html`` wrote (its
     index, with :data:`MARKER`, ``pages/*.html`` and ``pages/three.js``): the folder is replaced as a whole."""
     if not folder.exists() and not folder.is_symlink():
+        if folder.suffix.lower() in (".html", ".htm"):
+            raise InputError(f"--html here writes a folder (its index.html, and a page for each file), and "
+                             f"{folder.name} names a page", path=folder,
+                             hint=f"give a folder name such as {folder.with_suffix('').name or 'report'}/")
         return
     if not folder.is_dir() or folder.is_symlink():
         raise InputError(f"cannot write the report folder {folder}: it is a file", hint="give --html a folder name")
