@@ -4,14 +4,19 @@ here), one result per submission, JUnit and JSON as `validate` writes them, and 
 from __future__ import annotations
 
 import json
+import os
 import shutil
+import signal
+import subprocess
+import sys
+import time
 import uuid
 
 import pytest
 
 from conftest import CliRunner
 
-from bridgetools import NODES, need_ros, no_leftovers
+from bridgetools import NODES, REPO, leftovers, need_ros, no_leftovers, tag  # noqa: F401 (tag: a fixture)
 from worldgen.cli import main
 from worldgen.packages.course_ros1 import write_course
 
@@ -102,3 +107,27 @@ def test_a_folders_table_names_where_each_error_is_within_the_submission():
     lines = folder_text([alice, dave]).splitlines()
     assert "    runtime: stop_at_wall.py does not parse (scripts/stop_at_wall.py:2)" in lines
     assert "    node: cannot tell which node to run" in lines
+
+
+def test_ctrl_c_while_a_folder_is_graded_stops_at_once(tag, tmp_path):
+    """Ctrl-C (SIGINT to the foreground group, as a terminal sends it) once the first runs' masters are up: every
+    run gives up at once, click's "Aborted!" and exit 1 within seconds (a run waiting for its ended nodes took
+    15 s, and a supervisor closed beside the interrupt was reported as worldgen's own error), nothing left."""
+    course = write_course(tmp_path / "course")
+    subs = tmp_path / "class"
+    for name in ("ann", "bob", "cat", "dan"):
+        shutil.copytree(course / "lab_a_stop_at_wall", subs / f"{name}_lab")
+        manifest = subs / f"{name}_lab" / "package.xml"
+        manifest.write_text(manifest.read_text().replace("<name>lab_a_stop_at_wall<", f"<name>{name}_lab<"))
+    proc = subprocess.Popen([sys.executable, "-m", "worldgen", "run", str(subs), "--task", "stop-at-wall", "-j", "2"],
+                            env=dict(os.environ, PYTHONPATH=str(REPO)), stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True, start_new_session=True)
+    deadline = time.monotonic() + 60
+    while not any("rosmaster" in p for p in leftovers(tag)) and time.monotonic() < deadline and proc.poll() is None:
+        time.sleep(0.02)
+    assert any("rosmaster" in p for p in leftovers(tag)), proc.communicate()
+    os.killpg(proc.pid, signal.SIGINT)
+    started = time.monotonic()
+    out, err = proc.communicate(timeout=60)
+    assert (proc.returncode, out, err.strip()) == (1, "", "Aborted!")
+    assert time.monotonic() - started < 5.0

@@ -14,7 +14,6 @@ course's world package handed in beside the labs), and a metapackage, are no sub
 
 from __future__ import annotations
 
-from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 from ..check.discover import depended_on, is_metapackage, unpackaged, unpackaged_finding
@@ -28,7 +27,7 @@ from ..pyread.setup_py import read_setup
 from .outcome import RunRequest
 from .preflight import blocked_result, many_findings
 from .report import result_of, task_context
-from .supervise import stop_everything
+from .supervise import in_parallel
 from .transport import Transport, tried
 from .world import load_world
 
@@ -150,17 +149,7 @@ def grade_folder(folder: Path, world_path: Path | None, request: RunRequest, tra
             each(result, world, outcome.trace)
         return result
 
-    pool = ThreadPoolExecutor(max_workers=max(1, jobs))
-    futures = [pool.submit(one, s) for s in found]
-    try:
-        return [f.result() for f in futures]
-    except KeyboardInterrupt:   # Ctrl-C or SIGTERM in the main thread: stop every job's processes
-        for future in futures:
-            future.cancel()
-        stop_everything()
-        raise
-    finally:
-        pool.shutdown(wait=True)
+    return in_parallel(one, found, jobs)
 
 
 def _plan(submission: Path, task: str | None, names, python: str, transport: Transport):

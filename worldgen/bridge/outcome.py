@@ -14,7 +14,7 @@ from ..core.findings import Finding
 from .metrics import compute
 from .rubrics import DEFAULT_DURATION, person_loop
 from .logtail import TAIL, amount
-from .supervise import Child, Leftover, Supervisor
+from .supervise import Child, Leftover, Supervisor, check_stopping
 
 CRASH_GRACE = 5.0   # s of real time a node whose output ends in a traceback gets to finish exiting (finish_run)
 
@@ -262,6 +262,7 @@ def wait_for_end(simulator: Child, options: RunOptions, required: list[Child], s
         if ended is not None:
             supervisor.stop(simulator)
             return ended
+        check_stopping()
         time.sleep(0.01)
     return None
 
@@ -296,6 +297,7 @@ def let_crashes_end(children: list[Child], grace: float = CRASH_GRACE) -> None:
     crashing = [c for c in children if c.running and ends_in_traceback(c.output())]
     deadline = time.monotonic() + grace
     while any(c.running for c in crashing) and time.monotonic() < deadline:
+        check_stopping()
         time.sleep(0.01)
 
 

@@ -21,7 +21,6 @@ import json
 import math
 import re
 import tempfile
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Callable, Iterator, List, Optional, Sequence
@@ -34,6 +33,7 @@ from ..generate.worlds import generate
 from .grade import grade_folder
 from .outcome import Outputs
 from .single import run_single
+from .supervise import in_parallel
 
 GENERATED = re.compile(r"^(?P<kind>[a-z]+):(?P<count>\d+)(?:@(?P<seed>\d+))?$")
 MAX_WORLDS = 1000
@@ -117,8 +117,7 @@ def across_worlds(items: Sequence[WorldItem], runner: Callable[[WorldItem], List
 
     if jobs <= 1 or len(items) <= 1:
         return [one(item) for item in items]
-    with ThreadPoolExecutor(max_workers=jobs) as pool:
-        return list(pool.map(one, items))
+    return in_parallel(one, list(items), jobs)
 
 
 @dataclass(frozen=True)

@@ -16,7 +16,7 @@ from pathlib import Path
 from typing import Callable
 
 from ..core.errors import InputError
-from ..bridge.supervise import Child, Supervisor
+from ..bridge.supervise import Child, Supervisor, check_stopping
 from .rosenv import distro_package
 
 CALLER = "/worldgen"
@@ -140,6 +140,7 @@ def await_master(supervisor: Supervisor, child: Child, uri: str) -> None:
                 raise InputError(f"rosmaster could not start on port {port}: another master answers there",
                                  hint="set ROS_MASTER_URI to a free port")
             return
+        check_stopping()
         time.sleep(0.01)
     supervisor.stop(child)
     raise InputError(f"rosmaster did not answer on port {port} within {START_TIMEOUT:g} s")

@@ -26,6 +26,7 @@ import time
 import xmlrpc.client
 from dataclasses import dataclass, field
 
+from ..bridge.supervise import check_stopping
 from ..interface.topics import TASK_INPUTS
 
 CALLER = "/worldgen"
@@ -166,5 +167,6 @@ def wait_until_ready(readiness: Readiness, children, timeout: float) -> bool:
         running = sum(c.running for c in children)
         if readiness.ready(running, len(children) - running):
             return True
+        check_stopping()
         time.sleep(POLL if readiness.joined else POLL_JOINING)
     return False

@@ -26,7 +26,7 @@ from typing import Iterator
 
 from ..bridge.outcome import (NodeSpec, Outcome, RunOptions, check_simulator, finish_run, launch_params,
                                outcome_of)
-from ..bridge.supervise import Child, Supervisor
+from ..bridge.supervise import Child, Supervisor, check_stopping
 from ..bridge.world import World, write_config
 from ..core.errors import WorldgenError
 from .gazebo_types import gazebo_msgs_path
@@ -146,4 +146,5 @@ def _wait_for_simulator(simulator: Child, joined: Path) -> None:
         check_simulator(simulator)
         if time.monotonic() > deadline:
             raise WorldgenError(f"the simulator did not come up within {SIM_START_TIMEOUT:g} s")
+        check_stopping()
         time.sleep(0.01)

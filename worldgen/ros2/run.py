@@ -21,7 +21,7 @@ from contextlib import contextmanager
 from pathlib import Path
 
 from ..bridge.outcome import NodeSpec, Outcome, RunOptions, check_simulator, finish_run, outcome_of
-from ..bridge.supervise import Child, Supervisor
+from ..bridge.supervise import Child, Supervisor, check_stopping
 from ..bridge.world import World, write_config
 from ..core.errors import WorldgenError
 
@@ -110,4 +110,5 @@ def _wait_for_start(simulator: Child, children: list[Child], start_file: Path) -
             raise WorldgenError(f"the simulator did not come up within {SIM_START_TIMEOUT:g} s")
         if waited > UP_TIMEOUT or any(not c.running for c in children):
             start_file.touch()
+        check_stopping()
         time.sleep(0.01)
