@@ -127,14 +127,25 @@ def test_a_submission_without_its_package_xml_is_a_failed_row(course, tmp_path):
     (folder / "eve" / LAB / "package.xml").unlink()
     (folder / "notes").mkdir()
     (folder / "notes" / "grading.txt").write_text("late: bob\n")
+    (folder / "fay").mkdir()   # handed in nothing
+    (folder / "gus").mkdir()   # handed in a zip nobody unpacked
+    (folder / "gus" / "lab.zip").write_bytes(b"PK\x05\x06" + bytes(18))
+    (folder / "gus" / ".DS_Store").write_bytes(b"\0")
     code, doc = grade(folder)
     assert code == 1
-    [eve] = [r for r in doc["results"] if "/eve" in r["path"]]
-    assert eve["path"] == str(folder / "eve") and not eve["ok"]
-    [finding] = eve["findings"]
-    assert finding["check"] == "package" and "no package.xml" in finding["message"]
+    rows = {Path(r["path"]).name: r for r in doc["results"] if Path(r["path"]).name in ("eve", "fay", "gus")}
+    assert sorted(rows) == ["eve", "fay", "gus"]
+    said = {}
+    for name, row in rows.items():
+        assert row["path"] == str(folder / name) and not row["ok"]
+        [finding] = row["findings"]
+        assert finding["check"] == "package" and finding["severity"] == "error"
+        said[name] = finding["message"]
+    assert "no package.xml" in said["eve"]
+    assert said["fay"] == "holds nothing: no package was handed in"
+    assert said["gus"] == "holds no package, only an archive (lab.zip)"
     assert not [r for r in doc["results"] if "notes" in r["path"]]
-    assert all(r["ok"] for r in doc["results"] if "/eve" not in r["path"])
+    assert all(r["ok"] for r in doc["results"] if Path(r["path"]).name not in rows)
 
 
 def test_a_lab_whose_setup_py_does_not_parse_is_not_run(course, tmp_path):

@@ -92,21 +92,49 @@ SPACES = ("build", "devel", "install", "log")   # a workspace's own folders, nev
 
 def unpackaged(folder: Path, packages: Sequence[Path]) -> list[Path]:
     """The folders directly in ``folder`` (a class's, one folder a student) that hold no package while others
-    do, but hold what a package does (a setup.py, a CMakeLists.txt, a launch file, a node): a submission whose
-    package.xml is missing, which a crawl for packages would pass over without a word."""
+    do, but hold what a package does (a setup.py, a CMakeLists.txt, a launch file, a node), nothing at all, or
+    only archives: a submission whose package.xml is missing, an empty hand-in or a zip nobody unpacked, which a
+    crawl for packages would pass over without a word."""
     holding = {Path(p).relative_to(folder).parts[0] for p in packages if Path(p) != folder}
     found = []
     for child in sorted(folder.iterdir()):
         if child.name.startswith(".") or child.name in SPACES or child.name in holding or child.is_symlink() \
                 or not child.is_dir():
             continue
-        if any(next(child.rglob(sign), None) is not None for sign in PACKAGE_SIGNS):
+        if any(next(child.rglob(sign), None) is not None for sign in PACKAGE_SIGNS) or \
+                all(_is_archive(f) for f in _files(child)):
             found.append(child)
     return found
 
 
+ARCHIVES = (".zip", ".tar", ".tgz", ".gz", ".bz2", ".xz", ".7z", ".rar")
+
+
+def _files(folder: Path) -> list[Path]:
+    """The files under ``folder`` but those hidden (.DS_Store …), at most a few (enough to tell what it holds)."""
+    files = []
+    for path in folder.rglob("*"):
+        if path.is_file() and not any(part.startswith(".") for part in path.relative_to(folder).parts):
+            files.append(path)
+            if len(files) > 20:
+                break
+    return files
+
+
+def _is_archive(path: Path) -> bool:
+    return path.suffix.lower() in ARCHIVES
+
+
 def unpackaged_finding(folder: Path) -> Finding:
-    """The row of a handed-in folder that holds what a package does but no package.xml (:func:`unpackaged`)."""
+    """The row of a handed-in folder that holds no package (:func:`unpackaged`), saying what it holds instead."""
+    files = _files(folder)
+    if not files:
+        return Finding("package", "error", "holds nothing: no package was handed in", where=str(folder),
+                       fix="hand the package in (its folder, with its package.xml)")
+    if all(_is_archive(f) for f in files):
+        return Finding("package", "error", f"holds no package, only {'archives' if len(files) > 1 else 'an archive'}"
+                       f" ({files[0].relative_to(folder)})", where=str(folder),
+                       fix="unpack it in the folder, so that the package's own folder, with its package.xml, is there")
     return Finding("package", "error", "holds no package: no package.xml in it, so neither catkin nor colcon "
                    "builds it, and roslaunch, rosrun and ros2 cannot find it", where=str(folder),
                    fix="hand the package in with its package.xml (catkin_create_pkg, ros2 pkg create and worldgen "
