@@ -118,6 +118,32 @@ def test_bad_world_and_port_in_use_are_one_line_errors(tmp_path):
     no_leftovers(env)
 
 
+def test_a_second_sim_on_the_same_master_is_refused_and_the_first_runs_on(running_sim):
+    """A second /gazebo would make the master shut the first one down, and with it the master it started: the
+    second is refused in one line, and the first still publishes."""
+    proc = worldgen(["sim", str(ROOM), "--duration", "1"], running_sim)
+    out, err = proc.communicate(timeout=60)
+    assert proc.returncode == 2 and len(err.strip().splitlines()) == 1, err
+    assert err.startswith(f"worldgen: error: a simulator (/gazebo, pid ") and running_sim["ROS_MASTER_URI"] in err
+    got = probe(["topics", "1"], running_sim)
+    assert got["counts"]["/scan"] >= 3
+
+
+@pytest.mark.parametrize("uri, said", [
+    ("garbage", "ROS_MASTER_URI=garbage is not a ROS master's address"),
+    ("http://localhost:99999", "is not a ROS master's address"),
+    ("http://nosuchhost.invalid:11311", "nosuchhost.invalid is not this machine, so worldgen cannot start one"),
+])
+def test_a_master_uri_worldgen_cannot_use_is_a_one_line_error(tmp_path, uri, said):
+    """Not a master started on localhost instead, which the student's other terminals would not find."""
+    need_ros()
+    env = dict(ros_env(tmp_path), ROS_MASTER_URI=uri)
+    proc = worldgen(["sim", str(ROOM), "--duration", "1"], env)
+    out, err = proc.communicate(timeout=60)
+    assert proc.returncode == 2 and len(err.strip().splitlines()) == 1 and said in err, err
+    assert "started a ROS master" not in err
+
+
 def test_sigterm_stops_everything(tmp_path):
     need_ros()
     env = ros_env(tmp_path)

@@ -36,6 +36,55 @@ def master_answers(uri: str, timeout: float = 1.0) -> bool:
         socket.setdefaulttimeout(old)
 
 
+def running_node(uri: str, name: str, timeout: float = 1.0) -> int | None:
+    """The pid of the node ``name`` registered with the master at ``uri``, when it answers there; None when no
+    such node is registered, or its registration is stale (the node is gone)."""
+    old = socket.getdefaulttimeout()
+    socket.setdefaulttimeout(timeout)
+    try:
+        code, _, node_uri = xmlrpc.client.ServerProxy(uri).lookupNode(CALLER, name)
+        if code != 1:
+            return None
+        code, _, pid = xmlrpc.client.ServerProxy(node_uri).getPid(CALLER)
+        return pid if code == 1 else None
+    except (OSError, xmlrpc.client.Error, ValueError):
+        return None
+    finally:
+        socket.setdefaulttimeout(old)
+
+
+def checked_master_uri(value: str) -> tuple[str, str, int]:
+    """``ROS_MASTER_URI`` as (the URI, its host, its port); InputError when it is not ``http://HOST:PORT``."""
+    from urllib.parse import urlparse
+
+    try:
+        parsed = urlparse(value)
+        scheme, host, port = parsed.scheme, parsed.hostname, parsed.port
+    except ValueError:   # a port that is no number, or out of range
+        scheme = host = port = None
+    if scheme != "http" or not host:
+        raise InputError(f"ROS_MASTER_URI={value} is not a ROS master's address",
+                         hint="set it as http://HOST:PORT (export ROS_MASTER_URI=http://localhost:11311), or unset it")
+    return value, host, port or 11311
+
+
+def is_this_machine(host: str) -> bool:
+    """Whether ``host`` names this machine (a master can be started for it here)."""
+    try:
+        addresses = {info[4][0] for info in socket.getaddrinfo(host, None, proto=socket.IPPROTO_TCP)}
+    except (OSError, UnicodeError):
+        return False
+    for address in addresses:
+        family = socket.AF_INET6 if ":" in address else socket.AF_INET
+        try:
+            with socket.socket(family) as sock:
+                sock.bind((address, 0))   # only an address of this machine can be bound
+            return True
+        except OSError:
+            continue
+    return False
+
+
 def free_port() -> int:
     with socket.socket() as sock:
         sock.bind(("127.0.0.1", 0))

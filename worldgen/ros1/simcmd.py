@@ -10,14 +10,15 @@ import tempfile
 import time
 from pathlib import Path
 from typing import Callable
-from urllib.parse import urlparse
 
-from .master import master_answers, set_param, start_master
+from .master import checked_master_uri, is_this_machine, master_answers, running_node, set_param, start_master
 from .gazebo_types import gazebo_msgs_path
 from ..bridge.supervise import Supervisor
 from ..bridge.world import World, write_config
+from ..core.errors import InputError
 
 DEFAULT_URI = "http://localhost:11311"
+SIMULATOR = "/gazebo"   # the simulator node's name, as Gazebo's
 TOPICS = ("/clock /scan /odom /tf /tf_static /joint_states /imu /gazebo/model_states; subscribes /cmd_vel; "
           "Gazebo's services (/gazebo/get_model_state, spawn_sdf_model, reset_world …)")
 
@@ -48,10 +49,19 @@ def _serve(world: World, supervisor: Supervisor, tmp: Path, uri: str, cameras: l
     ``rate``, ``duration`` and ``no_hit``), until the node ends (its exit code); a stop asked for interrupts it
     anywhere (KeyboardInterrupt: :func:`sim` says so, exit 0)."""
     env = dict(os.environ)
+    uri, host, port = checked_master_uri(uri)
     if master_answers(uri):
+        pid = running_node(uri, SIMULATOR)
+        if pid is not None:   # a second /gazebo would make the master shut the first down, and its master
+            raise InputError(f"a simulator ({SIMULATOR}, pid {pid}) already runs on the ROS master at {uri}",
+                             hint="stop it (Ctrl-C where it runs) before starting another, or set ROS_MASTER_URI "
+                                  "to another port for a second one")
         say(f"worldgen sim: joined the ROS master at {uri}")
+    elif not is_this_machine(host):
+        raise InputError(f"no ROS master answers at {uri} (ROS_MASTER_URI), and {host} is not this machine, so "
+                         "worldgen cannot start one there",
+                         hint=f"start roscore on {host}, or unset ROS_MASTER_URI for a master here")
     else:
-        port = urlparse(uri).port or 11311
         _, uri = start_master(supervisor, port, env)
         say(f"worldgen sim: started a ROS master at {uri} (stopped on exit)")
     env["ROS_MASTER_URI"] = uri
