@@ -159,6 +159,29 @@ def test_a_node_crashing_midway_is_a_finding_at_full_speed(tag):
     assert doc["metrics"]["cmd_vel_messages"] == 1
 
 
+@pytest.mark.parametrize("node, severity, said", [
+    ("scan_topic_typo.py", "warning", "/stopper subscribes to /scans, which nothing publishes; did you mean /scan?"),
+    ("twist_stamped.py", "error", "a node publishes geometry_msgs/TwistStamped on /cmd_vel, but the simulated "
+                                  "TurtleBot3 takes geometry_msgs/Twist there (as Gazebo's does): the robot does not "
+                                  "move"),
+])
+def test_a_misspelt_topic_or_a_wrong_type_is_named(tag, node, severity, said):
+    """The robot never moves either way; the finding says why, not only that it stood still."""
+    result = run([str(ROOM), str(NODES / node), "--task", "stop-at-wall", "--rate", "max", "--duration", "3",
+                  "--format", "json"])
+    assert result.exit_code == 1, result.output
+    doc = json.loads(result.stdout)
+    assert doc["metrics"]["path_length_m"] < 0.01
+    assert [f["severity"] for f in doc["findings"] if f["message"] == said] == [severity], doc["findings"]
+
+
+def test_the_courses_node_draws_no_topic_finding(tag, course):
+    node = course / "lab_a_stop_at_wall" / "scripts" / "stop_at_wall.py"
+    doc = json.loads(run([str(ROOM), str(node), "--task", "stop-at-wall", "--rate", "max", "--duration", "4",
+                          "--format", "json"]).stdout)
+    assert not [f for f in doc["findings"] if f["check"] == "node"], doc["findings"]
+
+
 def test_output_ending_in_a_traceback_is_told_from_output_going_on():
     crash = subprocess.run([sys.executable, "-c", "print('started')\ntry:\n    {}['ranges']\n"
                             "except KeyError:\n    raise ValueError('the ranges were empty')"],

@@ -281,3 +281,16 @@ def test_a_namespace_typo_names_where_the_robots_are(rclpy_python, tag):
                           "--duration", "3", "--rate", "max"], rclpy_python, tag)
     said = [f for f in doc["findings"] if "no robot lives in /tmb3_1" in f["message"]]
     assert code == 1 and len(said) == 1 and "/cmd_vel" in said[0]["message"] and "__ns" in said[0]["fix"]
+
+
+def test_a_misspelt_scan_topic_is_named(rclpy_python, tag):
+    """A remap to /scans (as a typo in the node would be): the node hears nothing, and a finding says what it
+    probably meant."""
+    code, doc = run_json([str(ROOM), str(NODES / "timer_stopper.py"), "scan:=scans", "--ros", "jazzy",
+                          "--task", "stop-at-wall", "--duration", "3", "--rate", "max"], rclpy_python, tag)
+    said = [f for f in doc["findings"] if f["message"] == "a node subscribes to /scans, which nothing publishes; "
+                                                          "did you mean /scan?"]
+    assert code == 1 and [f["severity"] for f in said] == ["warning"], doc["findings"]
+    code, doc = run_json([str(ROOM), str(NODES / "timer_stopper.py"), "--ros", "jazzy", "--duration", "2",
+                          "--rate", "max"], rclpy_python, tag)
+    assert not [f for f in doc["findings"] if "nothing publishes" in f["message"]], doc["findings"]

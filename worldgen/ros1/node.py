@@ -203,12 +203,12 @@ class Bridge(Wire):
         commanded = bool(graded.get("cmd_vel_messages"))
         return dict(graded, person=self.person.path if self.person else [], robot=self.config.get("robot") or "burger",
                     robots=[t.io.result() for t in self.robots] + self.removed,
-                    findings=self.stray_commands(commanded))
+                    findings=self.stray_commands(commanded) + self.unheard())
 
     def stray_commands(self, commanded: bool = True) -> list[dict]:
-        """A finding per ``cmd_vel`` some node publishes where no robot lives (a typo in ``__ns:=``, say), and,
-        when the robot was never commanded, per velocity command published on a topic no robot takes (a typo in
-        the topic's name: ``/cmdvel``)."""
+        """A finding per ``cmd_vel`` some node publishes where no robot lives (a typo in ``__ns:=``, say), or with
+        a type the robot does not take (a TwistStamped), and, when the robot was never commanded, per velocity
+        command published on a topic no robot takes (a typo in the topic's name: ``/cmdvel``)."""
         try:
             published = sorted(self.rospy.get_published_topics())
         except Exception:   # noqa: BLE001  (no master answer: nothing to say)
@@ -217,6 +217,11 @@ class Bridge(Wire):
         found = []
         for name, kind in published:
             if name in taken:
+                if kind != CMD_TYPE:
+                    found.append({"check": "node", "severity": "error",
+                                  "message": f"a node publishes {kind} on {name}, but the simulated TurtleBot3 takes "
+                                             f"{CMD_TYPE} there (as Gazebo's does): the robot does not move",
+                                  "fix": f"publish {CMD_TYPE} (from geometry_msgs.msg import Twist)"})
                 continue
             if name.endswith("/cmd_vel"):
                 found.append({"check": "node", "severity": "error",
@@ -231,7 +236,33 @@ class Bridge(Wire):
         return found
 
 
+    def unheard(self) -> list[dict]:
+        """A finding per topic some node subscribes to that nothing publishes, when its name is near one the
+        simulator publishes (a typo: ``/scans``, ``/odometry``): that subscription never hears a message."""
+        import difflib
+
+        try:
+            import rosgraph
+
+            publishers, subscribers, _ = rosgraph.Master(SIMULATOR_NAME).getSystemState()
+        except Exception:   # noqa: BLE001  (no master answer: nothing to say)
+            return []
+        ours = sorted(topic for topic, names in publishers if SIMULATOR_NAME in names)
+        published = {topic for topic, _ in publishers}
+        found = []
+        for topic, names in sorted(subscribers):
+            who = ", ".join(sorted(n for n in names if n != SIMULATOR_NAME))
+            near = difflib.get_close_matches(topic, ours, n=1, cutoff=0.6) if topic not in published and who else []
+            if near:
+                found.append({"check": "node", "severity": "warning",
+                              "message": f"{who} subscribes to {topic}, which nothing publishes; did you mean "
+                                         f"{near[0]}?", "fix": f"subscribe to {near[0]} (is the topic's name misspelt?)"})
+        return found
+
+
 VELOCITY_TYPES = ("geometry_msgs/Twist", "geometry_msgs/TwistStamped")   # what a robot's cmd_vel takes
+CMD_TYPE = "geometry_msgs/Twist"      # what the simulated TurtleBot3's cmd_vel takes under ROS 1, as Gazebo's
+SIMULATOR_NAME = "/gazebo"
 
 
 def wait_for_start(rospy, bridge: Bridge, file: str) -> None:

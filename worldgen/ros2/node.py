@@ -236,6 +236,8 @@ class Watcher:
         self.subscriptions = BuiltinDataReader(dp, BuiltinTopicDcpsSubscription)
         self.others: set = set()
         self.on_clock: set = set()   # the participants that subscribe to /clock (use_sim_time)
+        self.subscribed: set = set()   # the topics others subscribe to ("rt/scan" …)
+        self.published: dict = {}      # the topics anyone publishes: whether the simulator itself does
         self.said: set = set()
         self.cmd_topics = {"rt" + r.cmd_name: r for r in wire.robots}
         table = topics(wire.stack)
@@ -248,6 +250,8 @@ class Watcher:
                 self.others.add(sample.key)
         for sample in self.publications.take(N=256):
             name = getattr(sample, "topic_name", None) or ""   # None for an endpoint that has gone
+            if name:
+                self.published[name] = self.published.get(name, False) or sample.participant_key == self.own
             robot = self.cmd_topics.get(name)
             if robot is not None and sample.participant_key != self.own:
                 self._publication(robot, sample)
@@ -256,6 +260,8 @@ class Watcher:
         for sample in self.subscriptions.take(N=256):
             if getattr(sample, "topic_name", None) == "rt/clock":
                 self.on_clock.add(sample.participant_key)
+            if getattr(sample, "topic_name", None) and sample.participant_key != self.own:
+                self.subscribed.add(sample.topic_name)
             topic = self.best_effort.get(getattr(sample, "topic_name", ""))
             if topic is not None and sample.participant_key != self.own and _reliable(sample.qos):
                 self._say(("reliable", topic.name), "warning",
@@ -288,6 +294,21 @@ class Watcher:
                       f"{ignoring} of the {len(self.others)} node processes do not follow /clock (use_sim_time is "
                       f"off): simulated time ran {pace}, their timers and sleeps on the wall clock",
                       "grade at --rate 1, or run the node with use_sim_time (_use_sim_time:=true after it)")
+
+    def unheard(self) -> None:
+        """A finding per topic a node subscribes to that nothing publishes, when its name is near one the
+        simulator publishes (a typo: ``/scans``, ``/odometry``): that subscription never hears a message."""
+        import difflib
+
+        ours = sorted(name[2:] for name, own in self.published.items() if own and name.startswith("rt/"))
+        for name in sorted(self.subscribed):
+            if not name.startswith("rt/") or name in self.published:
+                continue
+            near = difflib.get_close_matches(name[2:], ours, n=1, cutoff=0.6)
+            if near:
+                self._say(("unheard", name), "warning", f"a node subscribes to {name[2:]}, which nothing publishes; "
+                                                        f"did you mean {near[0]}?",
+                          f"subscribe to {near[0]} (is the topic's name misspelt?)")
 
     def _no_robot(self, topic: str) -> None:
         """A velocity command for a namespace where no robot lives (a typo in ``__ns:=``, say)."""
@@ -398,6 +419,7 @@ def main(argv: list) -> int:
                               udp=True)
             watcher.look()
             watcher.clock_followers(float(config.get("rate") or 0.0))
+            watcher.unheard()
         except KeyboardInterrupt:
             pass
         finally:
