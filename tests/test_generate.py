@@ -487,3 +487,40 @@ def test_preview_of_a_folder_draws_every_world_to_one_scale(tmp_path):
     assert (tmp_path / "sheet.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     refused = CliRunner().invoke(main, ["preview", str(folder), "--lidar", "-o", str(tmp_path / "x.png")])
     assert refused.exit_code == 2 and "folder" in refused.output and not (tmp_path / "x.png").exists()
+
+
+def test_a_contact_sheet_draws_the_others_when_one_spec_is_broken(tmp_path):
+    """A class's folder with one student's broken spec: the sheet is still written, the broken one a panel saying
+    why (and a line on stderr naming its file and line); only a folder of which nothing can be drawn is an error."""
+    from worldgen.cli import main
+    from worldgen.view.preview import picture
+    from worldgen.view.sheet import _figure
+
+    folder = tmp_path / "class"
+    folder.mkdir()
+    for seed in (1, 2):
+        world = generate("arena", seed, 1, {"size": (4, 3)})[0]
+        (folder / f"student_{seed}.yaml").write_text(world.text)
+    (folder / "student_3.yaml").write_text("name: broken\nrooms:\n  - polygon: [[0, 0], [4, 0]\n")
+    result = CliRunner().invoke(main, ["preview", str(folder), "-o", str(tmp_path / "sheet.png")])
+    assert result.exit_code == 0, result.output
+    assert (tmp_path / "sheet.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    [said] = [line for line in result.stderr.splitlines() if "not drawn" in line]
+    assert said.startswith(f"worldgen: not drawn: {folder / 'student_3.yaml'}:")
+    from worldgen.core.errors import WorldgenError
+
+    try:
+        picture(folder / "student_3.yaml")
+    except WorldgenError as err:
+        broken = err
+    fig = _figure([(folder / "student_1.yaml", picture(folder / "student_1.yaml")),
+                   (folder / "student_3.yaml", broken)], "class")
+    panel = fig.axes[1]
+    assert panel.get_title() == "student_3" and not panel.patches
+    assert [t.get_text().startswith("not drawn:\n") for t in panel.texts] == [True]
+    assert "1 not drawn" in fig.texts[0].get_text()
+    for name in ("student_1.yaml", "student_2.yaml"):
+        (folder / name).write_text("name: [\n")
+    result = CliRunner().invoke(main, ["preview", str(folder), "-o", str(tmp_path / "none.png")])
+    assert result.exit_code == 2 and len(result.output.strip().splitlines()) == 1
+    assert not (tmp_path / "none.png").exists()

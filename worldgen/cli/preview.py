@@ -70,7 +70,9 @@ def _sheet(folder: Path, output: Path | None, spawn: str | None, lidar: bool, ro
                          hint="leave it out to draw the folder's contact sheet, or give one file")
     output = output or Path(f"{folder.resolve().name or 'sheet'}.png")
     check_free([output], force)
-    path = write_file(output, sheet(folder, model_paths, robot), force=force)
+    drawing = sheet(folder, model_paths, robot, failed=lambda bad, err: click.echo(f"worldgen: not drawn: {err}",
+                                                                                  err=True))
+    path = write_file(output, drawing, force=force)
     click.echo(f"wrote {path}")
 
 

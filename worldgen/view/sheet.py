@@ -13,9 +13,9 @@ from __future__ import annotations
 import math
 import re
 from pathlib import Path
-from typing import List, Sequence
+from typing import Callable, List, Sequence
 
-from ..core.errors import InputError
+from ..core.errors import InputError, WorldgenError
 from ..check.discover import find_loose
 from ..core.mpl import matplotlib_agg
 
@@ -43,20 +43,35 @@ def _natural(text: str) -> list:
     return [(0, int(part), "") if part.isdigit() else (1, 0, part) for part in re.split(r"(\d+)", text) if part]
 
 
-def sheet(folder: str | Path, model_paths: Sequence[str | Path] = (), robot: str | None = None) -> bytes:
+def sheet(folder: str | Path, model_paths: Sequence[str | Path] = (), robot: str | None = None,
+          failed: Callable[[Path, WorldgenError], None] | None = None) -> bytes:
     """The contact sheet of ``folder`` as PNG bytes (``robot``: the model whose spawn is drawn, else each
-    world's own)."""
+    world's own). A file that cannot be drawn (a student's broken spec) is a panel saying why, and is told to
+    ``failed(path, error)``; with no ``failed``, or when no file can be drawn, its error is raised."""
     import dataclasses
 
     from .preview import picture
 
     folder = Path(folder)
-    pictures = []
+    pictures: list = []
+    errors = []
     for path in sheet_inputs(folder):
-        pic = picture(path, model_paths)
+        try:
+            pic = picture(path, model_paths)
+        except WorldgenError as err:
+            if failed is None:
+                raise
+            errors.append(err)
+            pictures.append((path, err))
+            continue
         if robot is not None and pic.spawn is not None:
             pic = dataclasses.replace(pic, spawn=dataclasses.replace(pic.spawn, model=robot))
         pictures.append((path, pic))
+    if len(errors) == len(pictures):
+        raise errors[0]
+    for path, pic in pictures:
+        if isinstance(pic, WorldgenError):
+            failed(path, pic)
     return render_sheet(pictures, str(folder))
 
 
@@ -94,6 +109,9 @@ def _figure(pictures, title: str):
         left, bottom = c * panel / width, 1 - (head + (r + 1) * panel) / height
         ax = fig.add_axes((left + 0.04 * panel / width, bottom + 0.02 * panel / height,
                            0.92 * panel / width, 0.84 * panel / height))
+        if isinstance(pic, WorldgenError):
+            _not_drawn(ax, path, pic)
+            continue
         bounds, colours, marked = draw_plan(ax, pic)
         drawn.append((ax, bounds, pic, path))
         shown.update(colours)
@@ -116,11 +134,31 @@ def _figure(pictures, title: str):
             spine.set_color("#cccccc")
         name = pic.title if pic.title and not pic.title.startswith("world 'default'") else path.stem
         ax.set_title(_shown(name), fontsize=8, pad=2)
-    fig.text(0.01, 1 - 0.25 / height, _shown(f"{title}: {len(pictures)} world{'s' if len(pictures) != 1 else ''}, "
-                                             f"all to one scale ({side:.1f} m across each panel, grid 1 m)"),
-             fontsize=10, va="center")
+    import textwrap
+
+    missing = len(pictures) - len(drawn)
+    heading = _shown(f"{title}: {len(pictures)} world{'s' if len(pictures) != 1 else ''}"
+                     f"{f' ({missing} not drawn)' if missing else ''}, all to one scale ({side:.1f} m across each "
+                     f"panel, grid 1 m)")
+    fig.text(0.01, 1 - 0.08 / height, textwrap.fill(heading, max(30, int(width * 12))), fontsize=9, va="top")
     _key(fig, foot / height, shown)
     return fig
+
+
+def _not_drawn(ax, path: Path, err: WorldgenError) -> None:
+    """A panel for a file that could not be drawn: its name and why, in red."""
+    import textwrap
+
+    from .preview import _shown
+
+    ax.set_xticks([])
+    ax.set_yticks([])
+    for spine in ax.spines.values():
+        spine.set_color("#d62728")
+    ax.set_title(_shown(path.stem), fontsize=8, pad=2)
+    why = (f"line {err.line}: " if err.line else "") + err.message
+    ax.text(0.5, 0.5, _shown("not drawn:\n" + textwrap.fill(why, 34)), ha="center", va="center",
+            fontsize=7, color="#d62728", transform=ax.transAxes, wrap=True)
 
 
 def _key(fig, height: float, shown: set) -> None:
