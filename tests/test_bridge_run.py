@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import json
 import math
+import shutil
 import signal
 import subprocess
 import sys
@@ -286,6 +287,23 @@ def test_rospy_missing_names_the_package(tag, tmp_path):
         assert proc.returncode == 2, proc.stderr
         assert proc.stderr.startswith("worldgen: error: rospy (ROS 1's Python client) is not installed: install "
                                       "python3-rospy") and len(proc.stderr.strip().splitlines()) == 1, proc.stderr
+
+
+def test_a_launch_files_script_that_is_not_executable_fails_the_run(tag, course, tmp_path, monkeypatch):
+    """roslaunch cannot start a script without its x bit: the run still shows what the node does, and fails
+    with an error naming the script and the chmod that fixes it."""
+    monkeypatch.setenv("TURTLEBOT3_MODEL", "burger")
+    workspace = shutil.copytree(course.parent.parent, tmp_path / "ws", symlinks=True)
+    lab = workspace / course.relative_to(course.parent.parent) / "lab_a_stop_at_wall"
+    script = lab / "scripts" / "stop_at_wall.py"
+    script.chmod(0o644)
+    launch = lab / "launch" / "stop_at_wall.launch"
+    result = run([str(launch), str(launch), "--task", "stop-at-wall", "--rate", "max", "--format", "json"])
+    assert result.exit_code == 1, result.output
+    doc = json.loads(result.stdout)
+    assert doc["metrics"]["final_front_distance_m"] == pytest.approx(0.5, abs=0.1)   # it ran
+    [said] = [f for f in doc["findings"] if "is not executable" in f["message"]]
+    assert said["severity"] == "error" and said["where"] == str(script) and said["fix"] == f"chmod +x {script}"
 
 
 def test_a_package_node_with_arguments_and_a_launch_files_node(tag, course, monkeypatch):

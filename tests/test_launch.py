@@ -94,7 +94,7 @@ def test_numbers_nodes_and_spawn_values():
     assert parse_spawn("1,2,1.57") == (1.0, 2.0, 1.57)
     assert parse_spawn("0,0,-6.28") == (0.0, 0.0, -6.28)
     for bad, words in (("1", "1 numbers, not 2 or 3"), ("a,b", "must be numbers"),
-                       ("1,2,3,4", "4 numbers, not 2 or 3 \\(there is no Z"), ("1,2,3,4,5", "5 numbers"),
+                       ("1,2,3,4", "4 numbers, not 2 or 3, and there is no Z"), ("1,2,3,4,5", "5 numbers"),
                        ("nan,1", "finite"), ("1,inf", "finite"), ("1,2,90", "probably degrees")):
         with pytest.raises(InputError, match=words) as err:
             parse_spawn(bad)

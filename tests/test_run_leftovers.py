@@ -165,8 +165,11 @@ def test_a_daemonising_node_leaves_nothing_and_the_report_says_so(tag, tmp_path)
 @pytest.mark.parametrize("node, args", [("ignores_sigterm.py", []), ("daemonising.py", ["pids:={tmp}/pids"])])
 def test_a_run_killed_with_sigkill_leaves_nothing(tag, tmp_path, node, args):
     """`kill -9` of `worldgen run` while its node runs: the master, the simulator, a node ignoring SIGTERM, a node's
-    daemons — all gone within seconds (the ``tag`` fixture checks every process marked with the run's tag)."""
-    env = dict(os.environ, PYTHONPATH=str(REPO))
+    daemons — all gone within seconds (the ``tag`` fixture checks every process marked with the run's tag), and the
+    run's temporary folder with them."""
+    temp = tmp_path / "temp"
+    temp.mkdir()
+    env = dict(os.environ, PYTHONPATH=str(REPO), TMPDIR=str(temp))
     argv = [sys.executable, "-m", "worldgen", "run", str(ROOM), str(NODES / node),
             *[a.format(tmp=tmp_path) for a in args], "--duration", "60"]
     proc = subprocess.Popen(argv, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
@@ -178,10 +181,12 @@ def test_a_run_killed_with_sigkill_leaves_nothing(tag, tmp_path, node, args):
     assert "rosmaster" in running and "-m worldgen.ros1 " in running and "worldgen.bridge.keeper" in running
     daemons = [int(p) for p in (tmp_path / "pids").read_text().split()] if args else []
     assert all(alive(p) for p in daemons)
+    assert [p.name for p in temp.glob("worldgen_run_*")]
     proc.kill()
     assert proc.wait() == -signal.SIGKILL
     no_leftovers(tag, wait=10)
     assert wait_gone(daemons, 1.0) == []   # the one with its environment cleared too
+    wait_for(lambda: not list(temp.glob("worldgen_run_*")), 10, "the run's folder removed")
 
 
 def test_a_node_printing_hundreds_of_megabytes_is_kept_bounded(tag):

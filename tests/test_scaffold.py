@@ -4,6 +4,7 @@ folders, and clean refusals; check_package on packages we made and broke."""
 from __future__ import annotations
 
 import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -236,6 +237,20 @@ def test_check_package_finds_what_breaks(tmp_path):
     bad_launch = pkg / "launch" / "broken.launch"
     bad_launch.write_text("<launch>\n<arg name='x'\n")
     assert any(f.check == "launch-parse" and f.where.endswith(":3") for f in check_package(pkg, environ={}))
+
+
+def test_a_broken_package_xml_is_named_with_its_line_without_catkin_pkg(tmp_path, monkeypatch):
+    """A wheel install has no catkin_pkg (a test dependency): the manifest's XML error still names its line."""
+    monkeypatch.setitem(sys.modules, "catkin_pkg.package", None)   # importing it raises ImportError
+    pkg = tmp_path / "lab"
+    pkg.mkdir()
+    (pkg / "package.xml").write_text("<?xml version='1.0'?>\n<package format='2'>\n  <name>lab</name>\n")
+    [finding] = [f for f in check_package(pkg, environ={}) if f.check == "package-xml"]
+    assert finding.severity == "error" and finding.where == f"{pkg / 'package.xml'}:4"
+    assert "not well-formed XML" in finding.message
+    (pkg / "package.xml").write_text("<package format='2'><version>0.1.0</version></package>\n")
+    [finding] = [f for f in check_package(pkg, environ={}) if f.check == "package-xml"]
+    assert finding.message == "package.xml has no <name>" and "<name>" in finding.fix
 
 
 def test_check_package_on_a_folder_that_is_no_package(tmp_path):

@@ -61,3 +61,32 @@ def test_help_is_still_help():
     result = CliRunner().invoke(main, ["validate", "--help"])
     assert result.exit_code == 0
     assert "Usage:" in result.output and "--skip-sim" in result.output
+
+
+@pytest.mark.parametrize("argv, lists", [([], "validate"), (["generate"], "maze")])
+def test_a_command_without_its_subcommand_shows_the_help(argv, lists):
+    """Asking what there is is no mistake: the help on stdout and exit 0, whichever click (8.2 calls it an error)."""
+    result = CliRunner().invoke(main, argv)
+    assert result.exit_code == 0 and result.stderr == ""
+    assert result.stdout.startswith("Usage: ") and lists in result.stdout
+
+
+@pytest.mark.parametrize("argv, said", [
+    (["preview", "{d}/shot.png"], "shot.png: is a picture, not a world or spec"),
+    (["preview", "{d}/node.py"], "node.py: is a Python file (a node, or setup.py), not a world or spec"),
+    (["build", "{d}/node.py", "-o", "{d}/out"], "node.py: is a Python file (a node, or setup.py), not a spec"),
+    (["launch", "{d}/room.yaml", "--package", "p", "-o", "{d}/out"], "room.yaml: is a floorplan spec, not a world"),
+    (["launch", "{d}/node.py", "--package", "p", "-o", "{d}/out"], "is a Python file (a node, or setup.py), not a "
+                                                                    "world"),
+])
+def test_a_file_of_the_wrong_kind_is_named_for_what_it_is(tmp_path, argv, said):
+    """Not "not well-formed XML" for a picture, a node or a spec given where a world goes; nothing written (a
+    picture given to preview is not taken for its own output, which exists)."""
+    (tmp_path / "shot.png").write_bytes(b"\x89PNG\r\n\x1a\n")
+    (tmp_path / "node.py").write_text("import rospy\n")
+    (tmp_path / "room.yaml").write_text("name: room\nrooms:\n  - rect: {center: [0, 0], size: [4, 4]}\n")
+    before = sorted(tmp_path.rglob("*"))
+    result = CliRunner().invoke(main, [a.format(d=tmp_path) for a in argv])
+    assert result.exit_code == 2 and result.stdout == "" and result.stderr.count("\n") == 1, result.output
+    assert result.stderr.startswith("worldgen: error: ") and said in result.stderr
+    assert sorted(tmp_path.rglob("*")) == before

@@ -15,6 +15,7 @@ course's world package handed in beside the labs), and a metapackage, are no sub
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Callable, NamedTuple, Optional
 
 from ..check.discover import depended_on, is_metapackage, unpackaged, unpackaged_finding
 from ..check.discover import shard as take_shard
@@ -89,12 +90,20 @@ def node_of(submission: Path, task: str | None, names: list[str]) -> Path:
                      hint="name the node file after the task, or give its name after the folder")
 
 
+class Hooks(NamedTuple):
+    """What the caller of :func:`grade_folder` hears as the grading goes."""
+
+    each: Optional[Callable] = None       # each(result, world, trace): every run that ran, its scans recorded
+    left_out: Optional[Callable] = None   # left_out(package, why): a package that is no submission, before any runs
+
+
 def grade_folder(folder: Path, world_path: Path | None, request: RunRequest, transport: Transport, *, jobs: int = 1,
-                 nodes=(), shard: tuple[int, int] | None = None, each=None, left_out=None) -> list[Result]:
+                 nodes=(), shard: tuple[int, int] | None = None, hooks: Hooks = Hooks()) -> list[Result]:
     """One result per submission in ``folder`` (each run on its own, ``jobs`` at once); with ``shard``
     (K, N), only the K-th of N stable shares of the submissions (:func:`worldgen.check.discover.shard`).
-    ``each(result, world, trace)`` is called for every run that ran, with every scan recorded (a replay page);
-    ``left_out(package, why)`` for each package that is no submission (:func:`not_submissions`), before any runs."""
+    ``hooks`` (:class:`Hooks`) hear each run (a replay page) and each package that is no submission
+    (:func:`not_submissions`)."""
+    each, left_out = hooks
     python = transport.node_python()
     world = load_world(world_path or examples_dir() / "enclosed_room.yaml", spawn=request.spawn,
                        robot=request.robot, launch=request.launch)

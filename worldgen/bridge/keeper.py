@@ -18,8 +18,10 @@ Protocol (one JSON object a line): worldgen sends ``{"op": "start", "id": K, "ar
 and ``{"op": "sweep", "id": K, "grace": S}`` (every process still below the keeper is sent SIGTERM, and SIGKILL
 after ``S`` seconds; answered ``{"reply": K, "ended": [{"pid", "cmd", "owner", "own"}]}``, ``owner`` the start
 request's id it descends from or null, ``own`` whether it is that started process itself); the keeper sends
-``{"exit": P, "code": C}`` when a started process ends (``C`` as Popen's returncode). When the pipe closes (worldgen
-done, or dead), or on SIGTERM/SIGHUP, it sweeps and exits. Owners are found by ancestry while the parent lives,
+``{"exit": P, "code": C}`` when a started process ends (``C`` as Popen's returncode); ``{"op": "remove", "path": P}``
+(not answered) names a folder of the run's to remove once all is ended. When the pipe closes (worldgen done, or
+dead), or on SIGTERM/SIGHUP, it sweeps, removes those folders (a worldgen killed with SIGKILL leaves no temporary
+folder either) and exits. Owners are found by ancestry while the parent lives,
 else by :data:`MARK` in the environment (each started process gets ``MARK=<keeper pid>.<id>``, which its children
 inherit), else by process group or session. While a child runs, the keeper frees the middle of its log on disk
 (:func:`.logtail.trim`).
@@ -30,6 +32,7 @@ from __future__ import annotations
 import json
 import os
 import select
+import shutil
 import signal
 import subprocess
 import sys
@@ -137,6 +140,7 @@ class Keeper:
         self.running: dict[int, tuple[str, subprocess.Popen]] = {}
         self.started: dict[int, str] = {}        # every pid ever started → its request id
         self.logs: dict[str, list] = {}           # request id → [open log, trimmed up to]
+        self.remove: list[str] = []               # folders to remove at the end
 
     def send(self, message: dict) -> None:
         try:
@@ -238,6 +242,8 @@ class Keeper:
             self.send(self.start(request))
         elif request.get("op") == "sweep":
             self.send({"reply": str(request["id"]), "ended": self.sweep(float(request.get("grace", SWEEP_GRACE)))})
+        elif request.get("op") == "remove" and isinstance(request.get("path"), str):
+            self.remove.append(request["path"])
 
     def serve(self, source: int = 0) -> None:
         """Answer requests until ``source`` closes or a stop signal comes, then sweep (see the module docstring)."""
@@ -267,6 +273,8 @@ class Keeper:
         self.sweep(SWEEP_GRACE)
         for entry in self.logs.values():
             entry[0].close()
+        for folder in self.remove:
+            shutil.rmtree(folder, ignore_errors=True)
 
 
 def _signal(pid: int, sig: int) -> None:

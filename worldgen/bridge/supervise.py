@@ -132,6 +132,16 @@ class KeeperLink:
             raise OSError(number, text, name) if name is not None else OSError(number, text)
         return answer["id"], answer["process"]
 
+    def remove_at_end(self, folder: str) -> None:
+        """Have the keeper remove ``folder`` once it has ended everything (it does so even when worldgen is killed)."""
+        data = (json.dumps({"op": "remove", "path": str(folder)}) + "\n").encode()
+        try:
+            with self._writing:
+                self.proc.stdin.write(data)
+                self.proc.stdin.flush()
+        except (OSError, ValueError):
+            pass
+
     def sweep(self, grace: float) -> list[dict]:
         """End every process still below the keeper (see :mod:`.keeper`); what was ended (nothing, when the keeper
         has ended: it swept as it ended, or another thread closed it while the command was stopping)."""
@@ -314,6 +324,11 @@ class Supervisor:
         self._names[key] = name
         self.children.append(child)
         return child
+
+    def remove_at_end(self, folder: str | Path) -> None:
+        """``folder`` (the run's temporary one) removed once every process of the supervisor has ended, by the
+        keeper: also when worldgen itself is killed (SIGKILL) and no ``finally`` of its own runs."""
+        self._keeper().remove_at_end(str(folder))
 
     def stop(self, child: Child, grace: float = STOP_GRACE) -> None:
         if child.running:

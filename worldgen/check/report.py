@@ -9,9 +9,12 @@ from __future__ import annotations
 
 import json
 import math
+import os
 import re
 from dataclasses import dataclass, field
+from pathlib import Path
 
+from ..core.errors import InputError, OutputExistsError
 from ..core.findings import SEVERITIES, Finding
 
 CHECK_ORDER = ("input", "parse", "sdformat", "launch", "package", "enclosed", "spawn-clear", "camera", "settle",
@@ -225,11 +228,7 @@ def check_junit_target(path, force: bool = False, forceable: bool = True) -> Non
     """Refuse (InputError, before anything runs) a ``--junit`` FILE that cannot take the report: a folder, a path
     through a file, or a file that exists and is not a JUnit report (a ``package.xml`` named by mistake) unless
     ``force`` (``forceable``: the command has ``--force``). A report an earlier run wrote there is replaced."""
-    import os
-    from pathlib import Path
-
-    from ..core.errors import InputError, OutputExistsError
-    from ..core.safexml import parse_file
+    from ..core.safexml import parse_file   # lxml: only when a --junit FILE is given
 
     path = Path(path)
     if path.is_dir():

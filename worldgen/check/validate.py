@@ -33,7 +33,7 @@ from .checks import (GEOMETRIC_CHECKS, SDFORMAT_ABSENT, SIM_CHECKS, check_enclos
                      check_spawn_clear, check_sdformat, floor_under, robot_body)
 from ..core.errors import InputError, SpecError, WorldFileError
 from ..core.packages import ros_package_path
-from ..core.inputs import check_regular
+from ..core.inputs import check_regular, refuse_unread
 from ..core.spawnpose import plan_pose
 from ..core.findings import Finding
 from . import sim_run
@@ -105,18 +105,6 @@ def check_options(options: Options) -> None:
 
 # ------------------------------------------------------------------------------------------------------ plan
 
-# files worldgen writes or a package holds that no command reads as its world: what each is, and what to do
-NOT_READ = {
-    ".py": ("a Python file (a node, or setup.py)",
-            "run a node with worldgen run WORLD NODE.py; validate the package that holds it"),
-    ".html": ("a page (worldgen view, drive, run and validate --html write these)", "open it in a web browser"),
-    ".htm": ("a page", "open it in a web browser"),
-    **{suffix: ("a picture", "validate the world or spec it shows") for suffix in (".png", ".jpg", ".jpeg", ".svg")},
-    ".pgm": ("a map image", "validate the map's .yaml (map_server's), which names this image"),
-    ".csv": ("a table (drive --csv, run --csv)", "validate the world or spec it was made in"),
-}
-
-
 def input_kind(path: Path) -> str:
     """``package``, ``model-folder``, ``folder`` (any other folder), ``spec``, ``launch`` or ``world`` (by suffix,
     else by content)."""
@@ -131,9 +119,7 @@ def input_kind(path: Path) -> str:
         return "launch"
     if path.suffix.lower() in SPEC_SUFFIXES:
         return "spec"
-    if path.suffix.lower() in NOT_READ:
-        what, hint = NOT_READ[path.suffix.lower()]
-        raise InputError(f"is {what}, not a world, spec or launch file", path=path, hint=hint)
+    refuse_unread(path, "a world, spec or launch file")
     try:
         with open(path, "rb") as handle:
             head = handle.read(4096).decode("utf-8", "replace")

@@ -44,7 +44,9 @@ def _lenient_streams() -> None:
                 pass
 
 
-_HELP_SHOWN = getattr(click.exceptions, "NoArgsIsHelpError", ())   # click 8.2+: bare `worldgen` shows the help
+# click 8.2+: bare `worldgen` (or `worldgen generate`) raises this to show the help, as an error; worldgen shows it
+# as click 8.1 does, on stdout with exit 0: asking what there is is no mistake
+_HELP_SHOWN = getattr(click.exceptions, "NoArgsIsHelpError", ())
 
 
 def _usage_line(err: click.UsageError) -> str:
@@ -115,7 +117,8 @@ class _Group(SuggestingGroup):
 
 def _usage_exit(err: click.UsageError):
     if isinstance(err, _HELP_SHOWN):
-        raise err
+        click.echo(err.ctx.get_help())
+        sys.exit(0)
     click.echo(_usage_line(err), err=True)
     sys.exit(EXIT_BAD_INPUT)
 

@@ -27,6 +27,10 @@ class FiniteFloat(click.FloatRange):
             self.fail(f"{value} is not a finite number.", param, ctx)
         return number
 
+    def _describe_range(self) -> str:
+        """The range the help shows: none when there are no bounds (click would show ``x<=None``)."""
+        return "" if self.min is None and self.max is None else super()._describe_range()
+
 
 @click.command("drive")
 @click.argument("world", type=click.Path(path_type=Path))

@@ -28,6 +28,8 @@ def new(name: str, output: Path | None, template: str, force: bool) -> None:
     from .outputs import check_suffix
 
     check_suffix(output, "yaml", "-o")
+    if name.lower().endswith((".yaml", ".yml")) and output is None:   # `new my_room.yaml`: the file to write
+        output, name = Path(name), Path(name).stem
     text = starter_spec(name, template)
     path = write_file(output or Path(f"{name}.yaml"), text, force=force)
     click.echo(f"wrote {path}")

@@ -36,8 +36,10 @@ def preview(source: Path, output: Path | None, spawn: str | None, robot: str | N
     if source.is_dir():
         return _sheet(source, output, spawn, lidar, robot, model_paths, force)
     from ..view.preview import Spawn, picture, render
+    from ..core.inputs import refuse_unread
     from ..core.spawnpose import parse_spawn
 
+    refuse_unread(source, "a world or spec")   # before the output's name is taken from it
     output = output or Path(f"{source.stem}.png")
     check_free([output], force)   # before the work; write_file checks again
     pose = parse_spawn(spawn) if spawn is not None else None

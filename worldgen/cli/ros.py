@@ -59,8 +59,10 @@ def launch_command(world: Path, package: str | None, name: str | None, model: st
     """Write the launch file that starts Gazebo with WORLD and spawns a TurtleBot3 in it (with --ros jazzy also
     the package's params/turtlebot3_bridge.yaml)."""
     from ..core.errors import InputError
+    from ..core.inputs import refuse_unread
     from ..core.numbers import format_number
     from ..core.fsio import write_files
+    from ..spec.model import SPEC_SUFFIXES
     from ..launch.gz_bridge_params import BRIDGE_FILE, bridge_yaml
     from ..launch.writer_xml import default_launch_name, launch_xml, package_name_of, parse_node
     from ..launch.writer_py import default_launch_py_name, launch_py, without_same_params
@@ -70,6 +72,11 @@ def launch_command(world: Path, package: str | None, name: str | None, model: st
     from ..packages.world_files import launch_depends_update, update_notes
 
     node_refs = [parse_node(n) for n in nodes]
+    refuse_unread(world, "a world")
+    if world.suffix.lower() in SPEC_SUFFIXES:
+        raise InputError("is a floorplan spec, not a world", path=world,
+                         hint="build it first (worldgen build SPEC --package PKG puts the world in the package beside "
+                              "its launch file), or launch the .world worldgen build wrote")
     check_world_target(world, ros)
     world_pkg = world.resolve().parent.parent if world.resolve().parent.name == "worlds" else None
     if world_pkg is not None and not (world_pkg / "package.xml").is_file():

@@ -100,7 +100,7 @@ def run(world, nodes, task, target, duration, rate, spawn, launch_file, robot, r
         _across_worlds(worlds_source, world, nodes, request, transport, jobs, shard_k_n, min_pass, fmt, junit, flags,
                        given)
     if world.is_dir() and not (world / "model.sdf").is_file() and not (world / "model.config").is_file():
-        from ..bridge.grade import grade_folder
+        from ..bridge.grade import Hooks, grade_folder
 
         pages: dict = {}
         each = None
@@ -112,9 +112,9 @@ def run(world, nodes, task, target, duration, rate, spawn, launch_file, robot, r
             def each(result, world_run, trace):
                 pages[result.path] = run_page(result, world_run, trace, back=BACK)
 
+        hooks = Hooks(each, lambda package, why: click.echo(f"worldgen: {package}: not graded: {why}", err=True))
         results = grade_folder(world, folder_world, request, transport, jobs=jobs, nodes=nodes, shard=shard_k_n,
-                               each=each, left_out=lambda package, why: click.echo(
-                                   f"worldgen: {package}: not graded: {why}", err=True))
+                               hooks=hooks)
         if html is not None:
             from ..view.grades import write_report
 
@@ -135,9 +135,24 @@ def run(world, nodes, task, target, duration, rate, spawn, launch_file, robot, r
 
     outputs = Outputs(fmt=fmt, junit=junit, plot=plot, csv=csv_path, bag=bag, html=html, force=force,
                       html_page=_replay_page(nodes) if html is not None else None)
+    files = [p for p in (plot, csv_path, bag, html, junit) if p is not None]
+    before = {p: _stamp(p) for p in files}
     result, text = run_single(world, nodes, request, outputs, transport)
     click.echo(text, nl=False)
+    if fmt == "text":   # (JSON on stdout stays JSON alone)
+        for path in files:
+            if _stamp(path) not in (None, before[path]):
+                click.echo(f"wrote {path}")
     sys.exit(EXIT_OK if result.ok else EXIT_FAILED)
+
+
+def _stamp(path: Path):
+    """A file's identity and last change (None: no file), to tell the files a run wrote."""
+    try:
+        info = path.stat()
+    except OSError:
+        return None
+    return info.st_ino, info.st_mtime_ns, info.st_size
 
 
 def _across_worlds(source: str, first: Path, nodes, request, transport, jobs: int, shard, min_pass: float, fmt: str,

@@ -11,7 +11,7 @@ import stat
 from pathlib import Path
 from typing import Type
 
-from .errors import WorldFileError, WorldgenError
+from .errors import InputError, WorldFileError, WorldgenError
 
 MAX_INPUT_BYTES = 64 * 2 ** 20   # worlds, model files, launch files, meshes, URDF: the largest read
 MAX_SPEC_BYTES = 4 * 2 ** 20     # floorplan specs and map_server YAML: hand-written text
@@ -68,3 +68,24 @@ def read_text_capped(path: str | Path, limit: int = MAX_SPEC_BYTES, error: Type[
     UnicodeDecodeError is left to the caller."""
     text = read_capped(path, limit, error, what).decode("utf-8")
     return text.replace("\r\n", "\n").replace("\r", "\n")
+
+
+# files worldgen writes or a package holds that no command reads as its world: what each is, and what to do
+NOT_READ = {
+    ".py": ("a Python file (a node, or setup.py)",
+            "run a node with worldgen run WORLD NODE.py; validate the package that holds it"),
+    ".html": ("a page (worldgen view, drive, run and validate --html write these)", "open it in a web browser"),
+    ".htm": ("a page", "open it in a web browser"),
+    **{suffix: ("a picture", "give the world or spec it shows") for suffix in (".png", ".jpg", ".jpeg", ".svg")},
+    ".pgm": ("a map image", "give the map's .yaml (map_server's), which names this image"),
+    ".csv": ("a table (drive --csv, run --csv)", "give the world or spec it was made in"),
+}
+
+
+def refuse_unread(path: str | Path, wanted: str, error: Type[WorldgenError] = InputError) -> None:
+    """``error`` when ``path`` is, by its suffix, a file no command reads as its world (:data:`NOT_READ`): what it
+    is, not ``wanted`` ("a world or spec" …), and what to do instead."""
+    suffix = Path(path).suffix.lower()
+    if suffix in NOT_READ:
+        what, hint = NOT_READ[suffix]
+        raise error(f"is {what}, not {wanted}", path=path, hint=hint)

@@ -25,7 +25,7 @@ def parse_spawn(text: str) -> tuple[float, float, float]:
     except ValueError:
         raise InputError(f"bad --spawn value {text!r}: {SPAWN_FORMS} must be numbers", hint=_HINT) from None
     if len(values) not in (2, 3):
-        extra = " (there is no Z: the robot stands on the floor)" if len(values) == 4 else ""
+        extra = ", and there is no Z" if len(values) == 4 else ""
         raise InputError(f"bad --spawn value {text!r}: {len(values)} numbers, not 2 or 3{extra}", hint=_HINT)
     if not all(math.isfinite(v) for v in values):
         raise InputError(f"bad --spawn value {text!r}: every number must be finite", hint=_HINT)

@@ -15,7 +15,7 @@ rounded up to 5 cm (0.85 m for a Waffle Pi, 0.6 m for a Burger), so every cell i
 from __future__ import annotations
 
 import math
-from typing import List, Set, Tuple
+from typing import List, Optional, Set, Tuple
 
 from ..spec.model import Material, FloorPatch, Opening, RobotPose, Room, Segment, Spec, WallStyle
 from .options import MazeOptions
@@ -137,6 +137,17 @@ def make(name: str, options: MazeOptions, space: RobotSpace, rng: Rng) -> Tuple[
     loops = f", {number_share(options.loops)} of its inner walls taken out" if options.loops else ", perfect"
     ends = "an entrance and an exit" if options.exits else "closed"
     return spec, f"a {cols} x {rows} maze of {c:g} m cells{loops}, {ends}"
+
+
+def shortfall(spec: Spec, options: MazeOptions) -> Optional[str]:
+    """What the maze does otherwise than asked (None: nothing): larger than ``--size``, when that holds fewer than
+    two cells a side (the least a maze has)."""
+    (x0, y0), _, (x1, y1), _ = spec.rooms[0].vertices
+    w, h = options.size
+    if x1 - x0 <= w + 1e-9 and y1 - y0 <= h + 1e-9:
+        return None
+    return (f"a {x1 - x0:g} x {y1 - y0:g} m maze, larger than the {w:g} x {h:g} m asked: a maze has at least two "
+            f"{options.cell:g} m cells a side; give a larger --size")
 
 
 def number_share(share: float) -> str:

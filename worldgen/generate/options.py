@@ -151,9 +151,10 @@ def make_options(kind: str, values: dict):
     return options
 
 
-def _range(value: float, low: float, high: float, flag: str, what: str) -> None:
+def _range(value: float, low: float, high: float, flag: str, what: str | None = None) -> None:
     if not low <= value <= high:
-        raise InputError(f"{flag} {number(value)} is out of range: {what} is from {number(low)} to {number(high)}",
+        raise InputError(f"{flag} {number(value)} is out of range: " + (f"{what} is" if what else "it goes")
+                         + f" from {number(low)} to {number(high)}",
                          hint=f"give {flag} a value from {number(low)} to {number(high)}")
 
 
@@ -170,7 +171,7 @@ def check_options(kind: str, options) -> None:
                             ("min_radius", 0.1, 20.0), ("tape_width", 0.005, 0.5)):
         value = getattr(options, name, None)
         if value is not None:
-            _range(value, low, high, "--" + name.replace("_", "-"), f"the {name.replace('_', ' ')}")
+            _range(value, low, high, "--" + name.replace("_", "-"))
     for name, low, high in (("rooms", 1, 64), ("furniture", 0, 8)):
         value = getattr(options, name, None)
         if value is not None and not low <= value <= high:

@@ -15,7 +15,9 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Mapping, Optional, Sequence, Set
 
-from ..core.errors import WorldFileError
+from ..core.errors import WorldFileError, WorldgenError
+from ..core.inputs import read_capped
+from ..core.safexml import parse_bytes
 from ..core.findings import Finding
 from .check_ament import check_ament
 from .build_files import check_project, cmake_text, file_text
@@ -96,10 +98,18 @@ def check_package(pkg_dir: str | Path, *, ros_package_path: Sequence[str | Path]
 def _read_manifest(manifest: Path, add) -> tuple[str, set[str] | None]:
     try:
         from catkin_pkg.package import parse_package
-    except ImportError:   # catkin_pkg is a test dependency; without it, read the name only
+    except ImportError:   # catkin_pkg is a test dependency; without it, the XML and the name only
+        try:
+            parse_bytes(read_capped(manifest), manifest, what="package.xml")
+        except (OSError, WorldgenError) as err:
+            line = getattr(err, "line", None)
+            add("package-xml", "error", getattr(err, "message", None) or f"package.xml cannot be read: {err}",
+                f"{manifest}:{line}" if line else manifest, getattr(err, "hint", None) or "fix package.xml")
+            return manifest.parent.name, None
         name = manifest_name(manifest)
         if not name:
-            add("package-xml", "error", "package.xml has no readable <name>", manifest, "fix package.xml")
+            add("package-xml", "error", "package.xml has no <name>", manifest,
+                "name the package: <name>my_package</name> (as catkin_create_pkg writes it)")
         return name or manifest.parent.name, None
     warnings: list[str] = []
     try:

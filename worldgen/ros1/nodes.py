@@ -17,6 +17,7 @@ from typing import Sequence
 
 from ..bridge.outcome import NodeSpec, check_python_file, group_args
 from ..core.errors import InputError
+from ..core.findings import Finding
 from ..core import packages
 
 # Packages whose nodes worldgen itself stands in for when a launch file starts them.
@@ -81,7 +82,12 @@ def _package_node(item: str, python: str, search: Sequence[str | Path], args: li
     target = found[0]
     if target.suffix != ".py" and os.access(target, os.X_OK) and not target.read_bytes()[:2] == b"#!":
         return NodeSpec(name or target.stem, [str(target.resolve())], args, str(target))   # a compiled node
-    return _python_file(target, python, args, name or Path(node_type).stem)
+    spec = _python_file(target, python, args, name or Path(node_type).stem)
+    if not os.access(target, os.X_OK):
+        spec.notes = [Finding("launch-node", "error", f"{package}/{node_type} is not executable: roslaunch and rosrun "
+                                                      "cannot start it (worldgen ran it with Python all the same)",
+                              where=str(target), fix=f"chmod +x {shlex.quote(str(target))}")]
+    return spec
 
 
 def _launch_nodes(path: Path, python: str, search: Sequence[str | Path], args: list[str]) -> list[NodeSpec]:
@@ -113,7 +119,7 @@ def _launch_nodes(path: Path, python: str, search: Sequence[str | Path], args: l
         raise InputError("the launch file starts no node of its own (only Gazebo and robot-description ones)",
                          path=path, hint="give the node's .py file, or a launch file that starts it")
     specs[0].notes = [f for f in info.findings if f.check in ("launch-param", "launch-remap", "launch-node") or
-                      f.severity != "info"]
+                      f.severity != "info"] + specs[0].notes
     return specs
 
 

@@ -79,6 +79,7 @@ def head_start(base_env: dict[str, str] | None = None, strict: bool = False) -> 
     once when no run took them."""
     with tempfile.TemporaryDirectory(prefix="worldgen_run_") as tmp_name, Supervisor() as supervisor:
         tmp = Path(tmp_name)
+        supervisor.remove_at_end(tmp)   # even when worldgen is killed
         try:
             find_rospy()
             master, uri = launch_master(supervisor, None, dict(base_env or os.environ), log=tmp / "master.log")

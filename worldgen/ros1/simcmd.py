@@ -32,6 +32,7 @@ def sim(world: World, *, rate: float, duration: float | None, no_hit: str,
     cameras = check_cameras(world)   # InputError naming the packages when a camera cannot be drawn
     uri = os.environ.get("ROS_MASTER_URI") or DEFAULT_URI
     with tempfile.TemporaryDirectory(prefix="worldgen_sim_") as tmp, Supervisor() as supervisor:
+        supervisor.remove_at_end(tmp)   # even when worldgen is killed
         try:
             return _serve(world, supervisor, Path(tmp), uri, cameras, say,
                           {"rate": rate, "duration": duration, "no_hit": no_hit})

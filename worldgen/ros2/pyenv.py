@@ -74,4 +74,4 @@ def require_cyclonedds() -> None:
     except ImportError:
         version = f"{sys.version_info[0]}.{sys.version_info[1]}"
         raise InputError(f"worldgen's ROS 2 side needs cyclonedds, which this Python ({version}) does not have",
-                         hint="pip install 'worldgen[ros2]' (Python 3.10 to 3.12)") from None
+                         hint="pip install 'worldgen[ros2]' (Python 3.10 to 3.13)") from None

@@ -80,6 +80,7 @@ def run_nodes(world: World, nodes: list[NodeSpec], options: RunOptions, stack: s
     with tempfile.TemporaryDirectory(prefix="worldgen_run2_") as tmp_name, Supervisor() as supervisor, \
             private_domain() as domain:
         tmp = Path(tmp_name)
+        supervisor.remove_at_end(tmp)   # even when worldgen is killed
         env = node_env(base, stack, domain)
         trace_file, start_file = tmp / "trace.json", tmp / "start"
         config = write_config(tmp, world, rate=options.rate, duration=options.duration, no_hit=options.no_hit,

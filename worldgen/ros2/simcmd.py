@@ -38,6 +38,7 @@ def sim(world: World, *, stack: str, cmd_vel: str | None, rate: float, duration:
         say("worldgen sim: warning: ROS_AUTOMATIC_DISCOVERY_RANGE=OFF: nodes in this shell reach no other "
             "process, the simulator included; unset it or set LOCALHOST")
     with tempfile.TemporaryDirectory(prefix="worldgen_sim2_") as tmp, Supervisor() as supervisor:
+        supervisor.remove_at_end(tmp)   # even when worldgen is killed
         try:   # a stop asked for (Ctrl-C, SIGTERM, SIGHUP) at any moment once started: exit 0
             config = write_config(Path(tmp), world, rate=rate, duration=duration, no_hit=no_hit, trace=None,
                                   stack=stack, domain=domain, cmd_vel=cmd_vel, start_file=None, expect=0,

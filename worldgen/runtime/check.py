@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import json
 import os
+import shlex
 import subprocess
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -187,7 +188,8 @@ def findings(reports: Iterable[NodeReport], python: str, naming: Naming = Naming
             if line:
                 found.append(Finding("runtime", "error", f"{report.path.name} does not parse as Python 3, which ROS "
                                      f"{'2' if naming.ros2 else 'Noetic'} runs nodes with: {message}", where=where,
-                                     fix=f"make it Python 3 code ({python} -m py_compile {report.path} shows where)"))
+                                     fix=f"make it Python 3 code ({python} -m py_compile "
+                                         f"{shlex.quote(str(report.path))} shows where)"))
             else:
                 found.append(Finding("runtime", "error", f"{report.path.name}: {message}", where=where))
         needed = report.source.needed()

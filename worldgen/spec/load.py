@@ -14,7 +14,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from ..core.errors import SpecError
-from ..core.inputs import MAX_SPEC_BYTES, read_text_capped
+from ..core.inputs import MAX_SPEC_BYTES, read_text_capped, refuse_unread
 from . import values
 from .grid_spec import read_grid, read_grid_file
 from .messages import check_name, describe
@@ -50,6 +50,7 @@ def load_spec(path: str | Path) -> Spec:
     if path.suffix.lower() in IMAGE_SUFFIXES:
         raise SpecError("is an image, not a spec", path=path,
                         hint="for a ROS map, give the map's YAML (map.yaml, as map_saver writes it beside the image)")
+    refuse_unread(path, "a spec", SpecError)
     try:
         text = read_text_capped(path, MAX_SPEC_BYTES, SpecError, "spec")
     except FileNotFoundError:

@@ -18,6 +18,7 @@ from pathlib import Path
 from typing import Sequence, Tuple
 
 from ..check.sources import WorldSource
+from ..core.inputs import refuse_unread
 from ..core.scene import Scene
 from ..spec.load import load_spec
 from ..spec.model import SPEC_SUFFIXES, Spec
@@ -127,7 +128,9 @@ def _short(text: str, limit: int = 60) -> str:
 
 
 def picture(path: str | Path, model_paths: Sequence[str | Path] = ()) -> Picture:
-    """The picture of a spec (``.yaml``/``.yml``/``.json``/``.txt``) or a world file (anything else)."""
+    """The picture of a spec (``.yaml``/``.yml``/``.json``/``.txt``) or a world file (anything else but what no
+    command reads as a world: :data:`worldgen.core.inputs.NOT_READ`)."""
+    refuse_unread(path, "a world or spec")
     return spec_picture(load_spec(path)) if is_spec_path(path) else world_picture(path, model_paths)
 
 
