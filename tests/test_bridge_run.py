@@ -22,6 +22,7 @@ from conftest import CliRunner
 from rosstubs import SYSTEM_PYTHON
 from bridgetools import NODES, REPO, ROOM, leftovers, need_ros, no_leftovers, tag, wait_master  # noqa: F401 (tag: a fixture)
 from worldgen.bridge.outcome import ends_in_traceback
+from worldgen.interface.topics import near_topic
 from worldgen.cli import main
 from worldgen.packages.course_ros1 import write_course
 
@@ -192,6 +193,23 @@ def test_output_ending_in_a_traceback_is_told_from_output_going_on():
     assert not ends_in_traceback(crash.stdout + crash.stderr + "[INFO] caught it, going on\n")
     assert not ends_in_traceback("started\n[INFO] spinning\n")
     assert not ends_in_traceback("Traceback (most recent call last):\n")   # cut off before its frames
+    # rospy logs an exception raised in a callback, and the node lives on: no crash to wait for
+    logged = ("[ERROR] [1700000000.1]: bad callback: <bound method Stopper.on_scan of <Stopper object>>\n"
+              "Traceback (most recent call last):\n  File \"stop_at_wall.py\", line 9, in on_scan\n"
+              "    front = min([])\nValueError: min() arg is an empty sequence\n")
+    assert not ends_in_traceback(logged)
+    assert not ends_in_traceback("Exception in thread Thread-1:\n" + crash.stderr)
+
+
+def test_a_topic_nothing_publishes_is_matched_only_to_a_near_name():
+    robot = ["/clock", "/scan", "/odom", "/tf", "/tf_static", "/joint_states", "/imu", "/gazebo/model_states",
+             "/rosout"]
+    near = {name: near_topic(name, robot) for name in ("/scans", "/Scan", "/imus", "/gazebo/model_state", "/image",
+                                                       "/color", "/odometry", "/sensor_state", "/rosout_agg",
+                                                       "/base_scan", "/camera/scan")}
+    assert near == {"/scans": "/scan", "/Scan": "/scan", "/imus": "/imu", "/gazebo/model_state": "/gazebo/model_states",
+                    "/image": None, "/color": None, "/odometry": None, "/sensor_state": None, "/rosout_agg": None,
+                    "/base_scan": None, "/camera/scan": None}
 
 
 @pytest.mark.parametrize("make, expected", [

@@ -148,6 +148,19 @@ def test_a_submission_without_its_package_xml_is_a_failed_row(course, tmp_path):
     assert all(r["ok"] for r in doc["results"] if Path(r["path"]).name not in rows)
 
 
+def test_an_empty_folder_in_a_workspace_is_no_missing_submission(course, tmp_path):
+    """A workspace's src/ may hold an empty folder (a git submodule never cloned): not a student's empty hand-in."""
+    from worldgen.check.discover import search_folder
+
+    src = tmp_path / "ws" / "src"
+    shutil.copytree(course / LAB, src / LAB)
+    (src / "turtlebot3_msgs").mkdir()
+    (src / "downloads").mkdir()
+    (src / "downloads" / "labs.zip").write_bytes(b"PK\x05\x06" + bytes(18))
+    assert search_folder(src).unpackaged == ()
+    assert search_folder(src.parent).unpackaged == ()
+
+
 def test_a_lab_whose_setup_py_does_not_parse_is_not_run(course, tmp_path):
     """colcon cannot build an ament_python package whose setup.py is not Python: run grades it as a node that
     cannot run, naming the file and line, not by running its script as if it had been built."""

@@ -176,6 +176,8 @@ def test_junit_replaces_an_earlier_report_and_nothing_else(tmp_path):
     report.write_bytes(first.replace(b'tests="', b'tests="9'))   # an earlier report, whatever it said
     assert run_cli(world, "--skip-sim", "--junit", report).exit_code == 0
     assert report.read_bytes() == first
+    report.write_bytes(b"")   # an empty placeholder (touch report.xml) is taken too
+    assert run_cli(world, "--skip-sim", "--junit", report).exit_code == 0 and report.read_bytes() == first
     manifest = tmp_path / "package.xml"   # named by mistake: kept, byte for byte
     manifest.write_text("<package format='2'><name>lab</name></package>\n")
     for kept in (manifest, tmp_path / "notes.xml"):

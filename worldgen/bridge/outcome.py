@@ -301,12 +301,21 @@ def let_crashes_end(children: list[Child], grace: float = CRASH_GRACE) -> None:
         time.sleep(0.01)
 
 
+SURVIVED = ("bad callback", "Exception in thread", "Exception ignored")   # said before a traceback a node lives on
+
+
 def ends_in_traceback(output: str) -> bool:
-    """Whether ``output`` ends with a Python traceback: its last "Traceback (most recent call last):" (of a
-    chain, the last), then the frames (indented), and last the exception's own line."""
+    """Whether ``output`` ends with the traceback of an exception that ends the program: its last "Traceback (most
+    recent call last):" (of a chain, the last), then the frames (indented), and last the exception's own line; not
+    one that rospy logs for a callback ("bad callback: …"), nor a thread's, which the node lives on after."""
     lines = [line for line in output.splitlines() if line.strip()]
     starts = [i for i, line in enumerate(lines) if line.startswith("Traceback (most recent call last):")]
     if not starts:
+        return False
+    first = starts[-1]
+    while first > 0 and lines[first - 1].startswith(("During handling", "The above exception")):   # a chain
+        first = max([i for i in starts if i < first - 1] or [0])
+    if first > 0 and any(mark in lines[first - 1] for mark in SURVIVED):
         return False
     after = lines[starts[-1] + 1:]
     unindented = [i for i, line in enumerate(after) if not line.startswith(" ")]

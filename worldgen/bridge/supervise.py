@@ -150,14 +150,15 @@ class KeeperLink:
         try:
             return self.ask({"op": "sweep", "grace": grace})["ended"]
         except WorldgenError:
-            if self.gone or self.proc.poll() is not None:
+            if self.gone or self.proc.stdin.closed or self.proc.poll() is not None:
                 return []
             raise
 
     def close(self) -> None:
         """Let the keeper go (it sweeps once more, then exits) and wait for it."""
         try:
-            self.proc.stdin.close()
+            with self._writing:   # not in the middle of another thread's request
+                self.proc.stdin.close()
         except OSError:
             pass
         try:
@@ -282,14 +283,21 @@ def in_parallel(work, items: list, jobs: int) -> list:
     futures = [pool.submit(work, item) for item in items]
     try:
         return [f.result() for f in futures]
-    except KeyboardInterrupt:
+    except BaseException as err:   # an interrupt, or a run's own error: no further run starts
         for future in futures:
             future.cancel()
-        stop_everything()
+        if isinstance(err, KeyboardInterrupt):
+            stop_everything()
         raise
     finally:
-        pool.shutdown(wait=True)
-        _stopped()
+        try:
+            pool.shutdown(wait=True)
+        except KeyboardInterrupt:   # Ctrl-C while the runs under way finish: stop them too
+            stop_everything()
+            pool.shutdown(wait=True)
+            raise
+        finally:
+            _stopped()
 
 
 def _interrupt(signum, frame):

@@ -96,15 +96,22 @@ def unpackaged(folder: Path, packages: Sequence[Path]) -> list[Path]:
     only archives: a submission whose package.xml is missing, an empty hand-in or a zip nobody unpacked, which a
     crawl for packages would pass over without a word."""
     holding = {Path(p).relative_to(folder).parts[0] for p in packages if Path(p) != folder}
+    handed_in = not _source_space(folder)   # a workspace's src/ may hold an empty folder (a submodule not cloned)
     found = []
     for child in sorted(folder.iterdir()):
         if child.name.startswith(".") or child.name in SPACES or child.name in holding or child.is_symlink() \
                 or not child.is_dir():
             continue
         if any(next(child.rglob(sign), None) is not None for sign in PACKAGE_SIGNS) or \
-                all(_is_archive(f) for f in _files(child)):
+                (handed_in and all(_is_archive(f) for f in _files(child))):
             found.append(child)
     return found
+
+
+def _source_space(folder: Path) -> bool:
+    """Whether ``folder`` is a catkin or colcon workspace, or its ``src``: not a class's folder of hand-ins."""
+    return folder.name == "src" or any((folder / marker).exists() for marker in
+                                       ("CMakeLists.txt", ".catkin_workspace", ".catkin_tools", "src"))
 
 
 ARCHIVES = (".zip", ".tar", ".tgz", ".gz", ".bz2", ".xz", ".7z", ".rar")

@@ -227,7 +227,8 @@ def to_junit(results: list[Result], suite_name: str = "worldgen validate") -> by
 def check_junit_target(path, force: bool = False, forceable: bool = True) -> None:
     """Refuse (InputError, before anything runs) a ``--junit`` FILE that cannot take the report: a folder, a path
     through a file, or a file that exists and is not a JUnit report (a ``package.xml`` named by mistake) unless
-    ``force`` (``forceable``: the command has ``--force``). A report an earlier run wrote there is replaced."""
+    ``force`` (``forceable``: the command has ``--force``). A report an earlier run wrote there (or an empty file)
+    is replaced."""
     from ..core.safexml import parse_file   # lxml: only when a --junit FILE is given
 
     path = Path(path)
@@ -239,9 +240,9 @@ def check_junit_target(path, force: bool = False, forceable: bool = True) -> Non
                 raise InputError(f"cannot write {path}: {parent} is not a folder",
                                  hint="give --junit a path in an existing or new folder")
             break
-    if force or not os.path.lexists(path):
+    if force or not os.path.lexists(path) or (path.is_file() and path.stat().st_size == 0):   # (an empty placeholder)
         return
-    root = parse_file(path) if path.is_file() and not path.is_symlink() else None
+    root = parse_file(path) if path.is_file() else None
     if root is None or root.tag not in ("testsuites", "testsuite"):
         raise OutputExistsError(f"{path} exists and is not a JUnit report", path=None,
                                 hint="give --junit another name: it replaces only an earlier report"

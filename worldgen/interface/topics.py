@@ -10,6 +10,7 @@ plugins update at 30 Hz, the LiDAR at 5 Hz, the camera at 30 Hz; ``/clock`` and 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Iterable
 
 STACKS = ("noetic", "humble", "jazzy")
 ROS2_STACKS = ("humble", "jazzy")
@@ -58,6 +59,19 @@ class Topic:
 def join(ns: str, name: str) -> str:
     """``ns`` + ``name``: ``/tb3_0/scan``, or ``/scan`` in the global namespace."""
     return f"{ns.rstrip('/')}/{name}" if ns not in ("", "/") else f"/{name}"
+
+
+def near_topic(name: str, published: Iterable[str]) -> str | None:
+    """The topic of ``published`` (the simulator's) that ``name``, a topic nothing publishes, most likely misspells:
+    one in the same namespace whose last part is at most a letter or so off (``/scans``: ``/scan``); None when none
+    is that near (``/image`` is no ``/imu``, ``/odometry`` no ``/odom``)."""
+    import difflib
+
+    space, _, last = name.rpartition("/")
+    candidates = {t.rpartition("/")[2].lower(): t for t in sorted(published)
+                  if t.rpartition("/")[0] == space and t != "/rosout"}
+    close = difflib.get_close_matches(last.lower(), list(candidates), n=1, cutoff=0.8)
+    return candidates[close[0]] if close and len(last) >= 2 else None
 
 
 def frame(prefix: str, name: str) -> str:

@@ -52,7 +52,7 @@ from ..interface.simulator import (NO_TIMING, graded_of, open_session, person_of
                                   write_trace)
 from ..interface.signals import deliver_interrupts, ignore_interrupts, pending_interrupt
 from ..interface.robot import RobotIO
-from ..interface.topics import join, topics as stack_topics
+from ..interface.topics import join, near_topic, topics as stack_topics
 from .camera_topics import CameraTopics
 from .gazebo_api import GazeboApi
 from .messages import fill, message_class, ros_time
@@ -239,8 +239,6 @@ class Bridge(Wire):
     def unheard(self) -> list[dict]:
         """A finding per topic some node subscribes to that nothing publishes, when its name is near one the
         simulator publishes (a typo: ``/scans``, ``/odometry``): that subscription never hears a message."""
-        import difflib
-
         try:
             import rosgraph
 
@@ -252,11 +250,11 @@ class Bridge(Wire):
         found = []
         for topic, names in sorted(subscribers):
             who = ", ".join(sorted(n for n in names if n != SIMULATOR_NAME))
-            near = difflib.get_close_matches(topic, ours, n=1, cutoff=0.6) if topic not in published and who else []
+            near = near_topic(topic, ours) if topic not in published and who else None
             if near:
                 found.append({"check": "node", "severity": "warning",
                               "message": f"{who} subscribes to {topic}, which nothing publishes; did you mean "
-                                         f"{near[0]}?", "fix": f"subscribe to {near[0]} (is the topic's name misspelt?)"})
+                                         f"{near}?", "fix": f"subscribe to {near} (is the topic's name misspelt?)"})
         return found
 
 

@@ -59,8 +59,8 @@ def _serve(world: World, supervisor: Supervisor, tmp: Path, uri: str, cameras: l
                                   "to another port for a second one")
         say(f"worldgen sim: joined the ROS master at {uri}")
     elif not is_this_machine(host):
-        raise InputError(f"no ROS master answers at {uri} (ROS_MASTER_URI), and {host} is not this machine, so "
-                         "worldgen cannot start one there",
+        raise InputError(f"no ROS master answers at {uri} (ROS_MASTER_URI), and {host} is not this machine (or "
+                         "cannot be found), so worldgen cannot start one there",
                          hint=f"start roscore on {host}, or unset ROS_MASTER_URI for a master here")
     else:
         _, uri = start_master(supervisor, port, env)

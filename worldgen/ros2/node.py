@@ -31,7 +31,7 @@ from ..interface.simulator import (NO_TIMING, graded_of, open_session, person_of
                                   write_trace)
 from ..interface.signals import deliver_interrupts, ignore_interrupts
 from ..interface.robot import PLUGINS, RobotIO
-from ..interface.topics import TASK_INPUTS, Qos, camera_topics, clock_every, frame, join, topics
+from ..interface.topics import TASK_INPUTS, Qos, camera_topics, clock_every, frame, join, near_topic, topics
 from . import msgs
 from .encode import build, velocity
 from .discovery import announce
@@ -298,17 +298,15 @@ class Watcher:
     def unheard(self) -> None:
         """A finding per topic a node subscribes to that nothing publishes, when its name is near one the
         simulator publishes (a typo: ``/scans``, ``/odometry``): that subscription never hears a message."""
-        import difflib
-
         ours = sorted(name[2:] for name, own in self.published.items() if own and name.startswith("rt/"))
         for name in sorted(self.subscribed):
             if not name.startswith("rt/") or name in self.published:
                 continue
-            near = difflib.get_close_matches(name[2:], ours, n=1, cutoff=0.6)
+            near = near_topic(name[2:], ours)
             if near:
                 self._say(("unheard", name), "warning", f"a node subscribes to {name[2:]}, which nothing publishes; "
-                                                        f"did you mean {near[0]}?",
-                          f"subscribe to {near[0]} (is the topic's name misspelt?)")
+                                                        f"did you mean {near}?",
+                          f"subscribe to {near} (is the topic's name misspelt?)")
 
     def _no_robot(self, topic: str) -> None:
         """A velocity command for a namespace where no robot lives (a typo in ``__ns:=``, say)."""

@@ -45,12 +45,12 @@ class Scan:
     range_max: float
     ranges: list[float]
     true_ranges: list[float]
-    hits: np.ndarray
+    hits: np.ndarray = field(compare=False)
     origin: tuple[float, float, float, float]
     time: float = 0.0
     frame_id: str = "base_scan"
-    # the ranges as arrays, kept by the cast that made them (:meth:`array` makes them when missing)
-    arrays: dict = field(default_factory=dict, repr=False, compare=False)
+    # the ranges as arrays (:meth:`array`), kept by the cast that made them; not a field ``replace`` would copy
+    arrays: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 
     @property
     def angles(self) -> list[float]:
@@ -114,11 +114,12 @@ def cast_scan(client: int, params: LidarParams, position, orientation, *, no_hit
     yaw = math.atan2(rot[1, 0], rot[0, 0])
     true.setflags(write=False)
     measured.setflags(write=False)
-    return Scan(angle_min=params.min_angle, angle_max=params.min_angle + (params.samples - 1) * params.angle_increment,
+    scan = Scan(angle_min=params.min_angle, angle_max=params.min_angle + (params.samples - 1) * params.angle_increment,
                 angle_increment=params.angle_increment, range_min=params.range_min, range_max=params.range_max,
                 ranges=measured.tolist(), true_ranges=true.tolist(), hits=starts + (ends - starts) * fractions[:, None],
-                origin=(float(origin[0]), float(origin[1]), float(origin[2]), yaw), time=time, frame_id=params.link,
-                arrays={"true": true, "measured": measured})
+                origin=(float(origin[0]), float(origin[1]), float(origin[2]), yaw), time=time, frame_id=params.link)
+    scan.arrays.update(true=true, measured=measured)
+    return scan
 
 
 def front_distance(scan: Scan, half_angle: float = math.radians(10), *, true: bool = False) -> float | None:
