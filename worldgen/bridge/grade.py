@@ -113,8 +113,9 @@ def grade_folder(folder: Path, world_path: Path | None, request: RunRequest, tra
     packaged = any((p / MANIFEST).is_file() for p in found)
     handed_in = set(unpackaged(folder, found)) if packaged else set()   # no package.xml: a failed row, not left out
     passed_over = not_submissions(found, task, nodes)
-    for package, why in passed_over.items() if left_out is not None else ():
-        left_out(package, why)
+    if left_out is not None:
+        for package, why in passed_over.items():
+            left_out(package, why)
     found = [p for p in found if p not in passed_over]
     found = sorted([*found, *handed_in])
     if not found:

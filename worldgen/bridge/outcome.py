@@ -276,14 +276,15 @@ def finish_run(simulator: Child, children: list[Child], nodes: list[NodeSpec], o
     writes what it has)."""
     ended_by = wait_for_end(simulator, options, [c for c, n in zip(children, nodes) if n.required], supervisor,
                             trace_file)
-    if trace_file.is_file():
+    written = trace_file.is_file()   # the simulator writes it whole, and last
+    if written:
         let_crashes_end(children)
     alive = {c.name: c.running for c in children}
-    if trace_file.is_file():
+    if written:
         supervisor.end_all()
     else:
         supervisor.stop_all()
-    if not trace_file.is_file():
+    if not trace_file.is_file():   # (a simulator stopped in order writes what it has)
         raise WorldgenError(f"the simulation ended without a result: {simulator.last_error_line() or 'no output'}",
                             hint="please report this to the worldgen developers")
     return json.loads(trace_file.read_text(encoding="utf-8")), alive, ended_by

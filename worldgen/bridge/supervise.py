@@ -98,19 +98,25 @@ class KeeperLink:
                 process.returncode = -signal.SIGKILL
             self.changed.notify_all()
 
-    def ask(self, request: dict) -> dict:
-        """Send ``request`` and wait for its answer."""
-        with self.changed:
-            self._count += 1
-            key = str(self._count)
-        data = (json.dumps(dict(request, id=key)) + "\n").encode()
+    def _write(self, request: dict) -> bool:
+        """Send ``request`` (one line); False when the keeper's pipe is closed (it has ended, or is ending)."""
+        data = (json.dumps(request) + "\n").encode()
         try:
             with self._writing:
                 self.proc.stdin.write(data)
                 self.proc.stdin.flush()
         except (OSError, ValueError):
+            return False
+        return True
+
+    def ask(self, request: dict) -> dict:
+        """Send ``request`` and wait for its answer."""
+        with self.changed:
+            self._count += 1
+            key = str(self._count)
+        if not self._write(dict(request, id=key)):
             raise WorldgenError("worldgen's process keeper has ended", hint="please report this to the worldgen "
-                                                                             "developers") from None
+                                                                             "developers")
         with self.changed:
             self.changed.wait_for(lambda: key in self._answers or self.gone, ANSWER_TIMEOUT)
             if key not in self._answers:
@@ -133,14 +139,9 @@ class KeeperLink:
         return answer["id"], answer["process"]
 
     def remove_at_end(self, folder: str) -> None:
-        """Have the keeper remove ``folder`` once it has ended everything (it does so even when worldgen is killed)."""
-        data = (json.dumps({"op": "remove", "path": str(folder)}) + "\n").encode()
-        try:
-            with self._writing:
-                self.proc.stdin.write(data)
-                self.proc.stdin.flush()
-        except (OSError, ValueError):
-            pass
+        """Have the keeper remove ``folder`` once it has ended everything (it does so even when worldgen is killed);
+        not answered, and nothing to do when the keeper has gone."""
+        self._write({"op": "remove", "path": str(folder)})
 
     def sweep(self, grace: float) -> list[dict]:
         """End every process still below the keeper (see :mod:`.keeper`); what was ended (nothing, when the keeper

@@ -235,21 +235,21 @@ class Bridge(Wire):
                               "fix": f"publish on {taken[0]} (is the topic's name misspelt?)"})
         return found
 
-
     def unheard(self) -> list[dict]:
         """A finding per topic some node subscribes to that nothing publishes, when its name is near one the
-        simulator publishes (a typo: ``/scans``, ``/odometry``): that subscription never hears a message."""
+        simulator publishes (a typo: ``/scans``, ``/imus``): that subscription never hears a message."""
         try:
             import rosgraph
 
-            publishers, subscribers, _ = rosgraph.Master(SIMULATOR_NAME).getSystemState()
+            own = self.rospy.get_name()   # the simulator's node: /gazebo
+            publishers, subscribers, _ = rosgraph.Master(own).getSystemState()
         except Exception:   # noqa: BLE001  (no master answer: nothing to say)
             return []
-        ours = sorted(topic for topic, names in publishers if SIMULATOR_NAME in names)
+        ours = sorted(topic for topic, names in publishers if own in names)
         published = {topic for topic, _ in publishers}
         found = []
         for topic, names in sorted(subscribers):
-            who = ", ".join(sorted(n for n in names if n != SIMULATOR_NAME))
+            who = ", ".join(sorted(n for n in names if n != own))
             near = near_topic(topic, ours) if topic not in published and who else None
             if near:
                 found.append({"check": "node", "severity": "warning",
@@ -260,7 +260,6 @@ class Bridge(Wire):
 
 VELOCITY_TYPES = ("geometry_msgs/Twist", "geometry_msgs/TwistStamped")   # what a robot's cmd_vel takes
 CMD_TYPE = "geometry_msgs/Twist"      # what the simulated TurtleBot3's cmd_vel takes under ROS 1, as Gazebo's
-SIMULATOR_NAME = "/gazebo"
 
 
 def wait_for_start(rospy, bridge: Bridge, file: str) -> None:

@@ -13,12 +13,12 @@ from typing import Callable
 
 from .master import checked_master_uri, is_this_machine, master_answers, running_node, set_param, start_master
 from .gazebo_types import gazebo_msgs_path
+from .ready import SIMULATOR
 from ..bridge.supervise import Supervisor
 from ..bridge.world import World, write_config
 from ..core.errors import InputError
 
 DEFAULT_URI = "http://localhost:11311"
-SIMULATOR = "/gazebo"   # the simulator node's name, as Gazebo's
 TOPICS = ("/clock /scan /odom /tf /tf_static /joint_states /imu /gazebo/model_states; subscribes /cmd_vel; "
           "Gazebo's services (/gazebo/get_model_state, spawn_sdf_model, reset_world …)")
 

@@ -297,7 +297,7 @@ class Watcher:
 
     def unheard(self) -> None:
         """A finding per topic a node subscribes to that nothing publishes, when its name is near one the
-        simulator publishes (a typo: ``/scans``, ``/odometry``): that subscription never hears a message."""
+        simulator publishes (a typo: ``/scans``, ``/imus``): that subscription never hears a message."""
         ours = sorted(name[2:] for name, own in self.published.items() if own and name.startswith("rt/"))
         for name in sorted(self.subscribed):
             if not name.startswith("rt/") or name in self.published:

@@ -53,25 +53,23 @@ def sheet(folder: str | Path, model_paths: Sequence[str | Path] = (), robot: str
     from .preview import picture
 
     folder = Path(folder)
-    pictures: list = []
-    errors = []
+    pictures: list = []   # (path, its Picture, or the error that kept it from being drawn)
     for path in sheet_inputs(folder):
         try:
             pic = picture(path, model_paths)
         except WorldgenError as err:
             if failed is None:
                 raise
-            errors.append(err)
             pictures.append((path, err))
             continue
         if robot is not None and pic.spawn is not None:
             pic = dataclasses.replace(pic, spawn=dataclasses.replace(pic.spawn, model=robot))
         pictures.append((path, pic))
+    errors = [(path, pic) for path, pic in pictures if isinstance(pic, WorldgenError)]
     if len(errors) == len(pictures):
-        raise errors[0]
-    for path, pic in pictures:
-        if isinstance(pic, WorldgenError):
-            failed(path, pic)
+        raise errors[0][1]
+    for path, err in errors:
+        failed(path, err)
     return render_sheet(pictures, str(folder))
 
 
